@@ -1,0 +1,120 @@
+#ifndef squeal_cea_complex_eigenvalue_analysis_h
+#define squeal_cea_complex_eigenvalue_analysis_h
+
+/**
+ * @file
+ * The complex eigenvalue analysis (CEA) of a scene over a sweep of pad
+ * modulus and friction coefficient: the eigenvalues of
+ * (lambda^2 M + lambda C + K + K_f(mu)) phi = 0 (thesis eq. 1-40 ff.), modes
+ * tracked across the sweep, unstable regions (Re lambda > tolerance) and the
+ * modes that lock in. Writes, into Output/Directory: eigenvalues.csv,
+ * unstable_regions.csv, check_full.csv (reduced against full), modes.pvd with
+ * the mode shapes, parameters.prm (the resolved parameters).
+ */
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <squeal/eigen/reduced_model.h>
+#include <squeal/eigen/tracking.h>
+#include <squeal/physics/structural_model.h>
+
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace squeal
+{
+  namespace cea
+  {
+    /** One eigenvalue of one sweep point, as written to eigenvalues.csv. */
+    struct ModeRecord
+    {
+      unsigned int         point;
+      double               mu;
+      double               E_pad;    ///< Pa
+      unsigned int         mode;     ///< index within the point, by frequency
+      std::complex<double> lambda;   ///< 1/s
+      double               residual; ///< relative, on the full model
+      bool                 unstable;
+      int                  track;
+    };
+
+    /** The analysis; run() does everything. */
+    class ComplexEigenvalueAnalysis
+    {
+    public:
+      /**
+       * @param prm the parsed parameters; @param handler the handler they
+       * were parsed from (echoed into the output directory).
+       */
+      ComplexEigenvalueAnalysis(const parameters::AllParameters &prm,
+                                const dealii::ParameterHandler & handler,
+                                MPI_Comm                         comm);
+
+      /**
+       * Builds the model, solves every sweep point, tracks the modes,
+       * classifies stability and writes the outputs.
+       * @throws std::runtime_error if the output directory exists and
+       * overwriting was not asked for, or if a solver fails.
+       */
+      void
+      run();
+
+      /** Every eigenvalue of the sweep (after run()). */
+      const std::vector<ModeRecord> &
+      records() const
+      {
+        return modes;
+      }
+      /** The unstable regions of the sweep (after run()). */
+      const std::vector<eigen::UnstableRegion> &
+      unstable_regions() const
+      {
+        return regions;
+      }
+
+    private:
+      void
+      setup_system();
+      void
+      solve_sweep();
+      void
+      check_against_full();
+      void
+      classify();
+      void
+      output_results() const;
+      void
+      write_mode(const physics::PETScVector &re,
+                 const physics::PETScVector &im,
+                 const std::string &         name) const;
+
+      const parameters::AllParameters &prm;
+      const dealii::ParameterHandler & handler;
+      MPI_Comm                         comm;
+      dealii::ConditionalOStream       pcout;
+      mutable dealii::TimerOutput      timer;
+      std::string                      work_dir; ///< written, then renamed
+
+      physics::StructuralModel model;
+      eigen::ReducedModel      reduced;
+
+      struct Point
+      {
+        double                                mu, E_pad;
+        std::vector<std::complex<double>>     lambda;
+        std::vector<double>                   residual;
+        std::vector<Eigen::VectorXcd>         q; ///< reduced coordinates
+        std::vector<eigen::EigenPair>         full; ///< full-solver pairs
+      };
+      std::vector<Point>                 points;
+      std::vector<ModeRecord>            modes;
+      std::vector<eigen::UnstableRegion> regions;
+      std::vector<std::string>           check_rows;
+    };
+  } // namespace cea
+} // namespace squeal
+
+#endif

@@ -1,0 +1,109 @@
+#ifndef squeal_eigen_qep_solver_h
+#define squeal_eigen_qep_solver_h
+
+/**
+ * @file
+ * Sparse eigensolvers on SLEPc, for PETSc built with real scalars.
+ *
+ * Strategy for reaching the whole band in real arithmetic ("real shifts in
+ * omega^2 on the friction-coupled problem"): the undamped problem
+ * (K + K_f) phi = omega^2 M phi is solved with one real shift
+ * sigma = -(2 pi f_t)^2 (f_t small, default 100 Hz) and shift-and-invert
+ * (MUMPS LU of K - sigma M). Its eigenvalues omega^2 are real for every
+ * mode that is not locked in, and a complex-conjugate pair where two modes
+ * have coalesced; the n nearest to sigma are exactly the n lowest modes, and
+ * the solver asks for more until the farthest converged one lies beyond
+ * (1.1 f_max)^2, so no mode of the band can be missed. Doublets are double
+ * real eigenvalues, which Krylov-Schur locks without trouble (the complex
+ * Schur-block swaps of a quadratic Krylov solver in real arithmetic fail on
+ * exact doublets: LAPACK trexc, seen with SLEPc TOAR). The damped quadratic
+ * problem is then solved exactly on the span of these eigenvectors (see
+ * reduced_model.h, solve_full); the residual of every eigenpair on the full
+ * model is reported. A negative shift keeps K - sigma M regular when K is
+ * singular (a free rigid-body motion).
+ */
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+
+#include <complex>
+#include <vector>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    using PETScMatrix = dealii::PETScWrappers::MPI::SparseMatrix;
+    using PETScVector = dealii::PETScWrappers::MPI::Vector;
+
+    /** The band and accuracy of a solve. */
+    struct BandOptions
+    {
+      double f_min            = 900.;   ///< Hz
+      double f_max            = 20000.; ///< Hz
+      double target_frequency = 100.;   ///< Hz; shift tau = -2 pi f_t
+      double tolerance        = 1e-10;  ///< relative, SLEPc
+      unsigned int initial_nev = 40;    ///< first guess of eigenvalues wanted
+    };
+
+    /**
+     * One eigenpair lambda, phi = re + i im of (lambda^2 M + lambda C + K)
+     * phi = 0; lambda in 1/s (Im lambda = omega in rad/s), phi of length n.
+     */
+    struct EigenPair
+    {
+      std::complex<double> lambda;
+      PETScVector          re;
+      PETScVector          im;
+      double               residual = 0.; ///< relative, on the full model
+    };
+
+    /** One eigenpair of K phi = omega^2 M phi (omega^2 in 1/s^2). */
+    struct UndampedMode
+    {
+      std::complex<double> omega2;
+      PETScVector          re;
+      PETScVector          im; ///< zero unless omega2 is complex
+    };
+
+    /**
+     * Every eigenpair of K phi = omega^2 M phi with Re omega^2 below
+     * (factor f_max 2 pi)^2, sorted by Re omega^2 (rigid modes included).
+     * SLEPc EPS Krylov-Schur, shift-and-invert at -(2 pi f_t)^2 with MUMPS;
+     * GHEP when @p symmetric (then phi is M-normalised), GNHEP otherwise.
+     * Of a complex pair only the member with Im omega^2 > 0 is returned.
+     * Matrices n x n, M in kg, K in N/m.
+     * @throws std::runtime_error if SLEPc fails or cannot cover the band.
+     */
+    std::vector<UndampedMode>
+    solve_undamped(const PETScMatrix &        M,
+                   const PETScMatrix &        K,
+                   const BandOptions &        options,
+                   const double               factor,
+                   const bool                 symmetric,
+                   dealii::ConditionalOStream &pcout);
+
+    /**
+     * A sparse LU factorisation (MUMPS through PETSc) kept for repeated
+     * solves with one matrix.
+     */
+    class DirectSolver
+    {
+    public:
+      /** Factorises @p A (n x n). @throws std::runtime_error on failure. */
+      explicit DirectSolver(const PETScMatrix &A);
+      ~DirectSolver();
+      DirectSolver(const DirectSolver &) = delete;
+      DirectSolver &operator=(const DirectSolver &) = delete;
+      /** x = A^{-1} b; x must have A's row layout. */
+      void
+      solve(const PETScVector &b, PETScVector &x) const;
+
+    private:
+      void *ksp;
+    };
+  } // namespace eigen
+} // namespace squeal
+
+#endif

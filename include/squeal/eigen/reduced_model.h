@@ -1,0 +1,144 @@
+#ifndef squeal_eigen_reduced_model_h
+#define squeal_eigen_reduced_model_h
+
+/**
+ * @file
+ * Reduced-order complex eigenvalue analysis for parameter sweeps.
+ *
+ * Basis (verification.md A6): the real modes of the symmetric system
+ * (K_rest + s K_pad + K_n, M) up to band_factor * f_max at a few sample pad
+ * moduli s, enriched with the static responses K_s^{-1} K_t Phi_s to the
+ * friction forces of those modes, made M-orthonormal by an eigen-decomposition
+ * of the Gram matrix (directions with relative M-norm^2 below 1e-8 dropped).
+ * All matrix parts are projected once; a sweep point is then the dense
+ * 2r x 2r companion eigenproblem of (lambda^2 I + lambda C_r + K_r) q = 0
+ * (LAPACK dgeev). The residual of every reduced eigenpair on the full model,
+ * ||(lambda^2 M + lambda C + K) V q|| / (|lambda|^2 ||M V q|| + |lambda|
+ * ||C V q|| + ||K V q||), is evaluated exactly from precomputed Gram matrices
+ * of the projected parts, at O(r^2) cost per eigenpair.
+ */
+
+#include <deal.II/base/conditional_ostream.h>
+
+#include <squeal/eigen/qep_solver.h>
+#include <squeal/physics/structural_model.h>
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <complex>
+#include <vector>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    /** One eigenpair of the reduced problem: lambda [1/s], coordinates q. */
+    struct ReducedEigenPair
+    {
+      std::complex<double> lambda;
+      Eigen::VectorXcd     q;        ///< length r, reduced coordinates
+      double               residual; ///< relative residual on the full model
+    };
+
+    /** The projected model of a StructuralModel. */
+    class ReducedModel
+    {
+    public:
+      /**
+       * Builds the basis and projects every matrix part.
+       * @param sample_moduli pad moduli of the basis samples [Pa]
+       * @param band f_max * band_factor is the highest basis mode [Hz]
+       * @throws std::runtime_error if an eigensolve or factorisation fails.
+       */
+      void
+      build(const physics::MatrixParts &    model,
+            const std::vector<double> &     sample_moduli,
+            const BandOptions &             band,
+            const double                    band_factor,
+            const bool                      enrichment,
+            dealii::ConditionalOStream &    pcout);
+
+      /**
+       * Projects on the span of the given vectors (length n each; linearly
+       * dependent ones are dropped) instead of building a basis.
+       */
+      void
+      build_from_vectors(const physics::MatrixParts &       model,
+                         const std::vector<PETScVector> &vectors);
+
+      /**
+       * Eigenpairs with Im lambda > 0 and frequency in [f_min, f_max] at pad
+       * modulus @p E_pad [Pa] and friction coefficient @p mu, sorted by
+       * frequency; Rayleigh damping alpha [1/s], beta [s].
+       */
+      std::vector<ReducedEigenPair>
+      solve(const double E_pad,
+            const double mu,
+            const double alpha,
+            const double beta,
+            const double f_min,
+            const double f_max) const;
+
+      /** The full-model vector V q, real and imaginary parts (length n). */
+      void
+      expand(const Eigen::VectorXcd &q,
+             physics::PETScVector &  re,
+             physics::PETScVector &  im) const;
+
+      /** Complex MAC |a^H b|^2 / (a^H a b^H b) of reduced coordinates (the
+       *  basis is M-orthonormal, so this is the M-weighted MAC). */
+      static double
+      mac(const Eigen::VectorXcd &a, const Eigen::VectorXcd &b);
+
+      /** Number of basis vectors r. */
+      unsigned int
+      size() const
+      {
+        return Mr.rows();
+      }
+
+    private:
+      void
+      project(const physics::MatrixParts &model, Eigen::MatrixXd &B);
+
+      enum Part
+      {
+        mass = 0,
+        rest,
+        pad,
+        normal,
+        friction,
+        n_parts
+      };
+      double                               E_ref = 1.;
+      Eigen::MatrixXd                      V; ///< n_local x r, M-orthonormal
+      Eigen::MatrixXd                      Mr;
+      std::array<Eigen::MatrixXd, n_parts> Ar; ///< V^T A_k V
+      std::array<std::array<Eigen::MatrixXd, n_parts>, n_parts>
+                                      G; ///< (A_k V)^T (A_l V)
+      dealii::IndexSet                owned;
+      MPI_Comm                        comm;
+    };
+
+    /**
+     * The full solver: every eigenpair of (lambda^2 M + lambda C + K) phi = 0
+     * with frequency in [f_min, f_max] at (E_pad [Pa], mu), Rayleigh alpha
+     * [1/s], beta [s]: the undamped friction-coupled modes up to 1.5 f_max by
+     * solve_undamped (GNHEP), then the damped problem on their span, exact
+     * for proportional damping; each pair carries its residual on the full
+     * model. Sorted by frequency.
+     * @throws std::runtime_error if an eigensolve fails.
+     */
+    std::vector<EigenPair>
+    solve_full(const physics::MatrixParts &model,
+               const double                E_pad,
+               const double                mu,
+               const double                alpha,
+               const double                beta,
+               const BandOptions &         band,
+               dealii::ConditionalOStream &pcout);
+  } // namespace eigen
+} // namespace squeal
+
+#endif

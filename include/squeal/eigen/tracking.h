@@ -1,0 +1,68 @@
+#ifndef squeal_eigen_tracking_h
+#define squeal_eigen_tracking_h
+
+/**
+ * @file
+ * Mode tracking across a parameter sweep and stability classification.
+ * Near mode lock-in the two coalescing modes become parallel, so the complex
+ * MAC alone cannot tell them apart; the matching cost therefore adds the
+ * relative eigenvalue jump: cost = (1 - MAC) + w |lambda_a - lambda_b| /
+ * |lambda_a|, assigned greedily from the cheapest pair.
+ */
+
+#include <Eigen/Dense>
+
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    /**
+     * Assigns track ids to the modes of consecutive sweep points.
+     * @param lambdas eigenvalues per point [1/s]
+     * @param macs macs[p](i, j): MAC between mode i of point p-1 and mode j
+     *   of point p (macs[0] unused), in [0, 1]
+     * @param next_id first free track id; advanced past the ids used
+     * @param weight w of the eigenvalue-jump term
+     * @return track id of every mode of every point
+     */
+    std::vector<std::vector<int>>
+    track_modes(const std::vector<std::vector<std::complex<double>>> &lambdas,
+                const std::vector<Eigen::MatrixXd> &                  macs,
+                int &                                                 next_id,
+                const double weight = 10.);
+
+    /** One interval of the swept parameter over which a track is unstable. */
+    struct UnstableRegion
+    {
+      double mu;
+      double E_min, E_max;       ///< Pa
+      double f_min, f_max;       ///< Hz
+      double max_re;             ///< 1/s
+      int    track;
+      int    partner_track = -1; ///< the locking-in partner, -1 if none
+      unsigned int point_of_max; ///< sweep point index of max_re
+    };
+
+    /**
+     * Unstable regions of one friction coefficient's sweep: maximal runs of
+     * consecutive points where a track has Re lambda > tolerance. The
+     * partner is the stable mode nearest in frequency at the point of
+     * largest growth (the other member of the lock-in).
+     * @param E swept moduli [Pa]; @param point_index sweep point ids
+     */
+    std::vector<UnstableRegion>
+    find_unstable_regions(
+      const double                                          mu,
+      const std::vector<double> &                           E,
+      const std::vector<unsigned int> &                     point_index,
+      const std::vector<std::vector<std::complex<double>>> &lambdas,
+      const std::vector<std::vector<int>> &                 tracks,
+      const double                                          tolerance);
+  } // namespace eigen
+} // namespace squeal
+
+#endif

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Quick start, command 2: set up, build and run the ctest verification suite.
+# Tests labelled "long" are left out; run them with: cd build && ctest -L long
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+"$here/scripts/setup.sh"
+cd "$here/build"
+ctest -LE long --output-on-failure -j2 "$@"

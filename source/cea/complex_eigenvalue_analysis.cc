@@ -1,0 +1,429 @@
+// The complex eigenvalue analysis driver: model set-up, the sweep over pad
+// modulus and friction coefficient with the full or the reduced solver, the
+// check of the reduced solver against the full one, mode tracking and the
+// unstable regions, and every output file. It follows the tutorial class
+// shape (setup_system, solve, output_results, run) with a timer per phase.
+
+#include <deal.II/base/utilities.h>
+#include <deal.II/lac/petsc_vector.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <squeal/cea/complex_eigenvalue_analysis.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace cea
+  {
+    using namespace dealii;
+    namespace fs = std::filesystem;
+
+    ComplexEigenvalueAnalysis::ComplexEigenvalueAnalysis(
+      const parameters::AllParameters &prm,
+      const ParameterHandler &         handler,
+      MPI_Comm                         comm)
+      : prm(prm)
+      , handler(handler)
+      , comm(comm)
+      , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+      , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
+      , model(prm, comm)
+    {}
+
+    void
+    ComplexEigenvalueAnalysis::setup_system()
+    {
+      TimerOutput::Scope t(timer, "setup and assembly");
+      // Refuse to replace earlier results; write into a temporary directory
+      // that output_results() renames at the end.
+      const fs::path dir(prm.output.directory);
+      if (fs::exists(dir) && !prm.output.overwrite)
+        throw std::runtime_error(
+          "output directory '" + prm.output.directory +
+          "' exists; set Output/Overwrite = true or pass --overwrite to "
+          "replace it");
+      work_dir = prm.output.directory + ".partial";
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          fs::remove_all(work_dir);
+          fs::create_directories(fs::path(work_dir) / "modes");
+          std::ofstream out(fs::path(work_dir) / "parameters.prm");
+          handler.print_parameters(out, ParameterHandler::PRM);
+        }
+      MPI_Barrier(comm);
+      model.setup_and_assemble(pcout);
+    }
+
+    void
+    ComplexEigenvalueAnalysis::solve_sweep()
+    {
+      const auto &es = prm.eigensolver;
+      eigen::BandOptions band{es.f_min, es.f_max, es.target_frequency,
+                              es.tolerance, 40};
+      const bool reduced_method = es.method == "reduced";
+      if (reduced_method)
+        {
+          TimerOutput::Scope t(timer, "reduced basis");
+          pcout << "Building the reduced basis" << std::endl;
+          reduced.build(model.parts(), es.reduced_sample_moduli, band,
+                        es.reduced_band_factor, es.reduced_enrichment, pcout);
+        }
+
+      const std::vector<double> E_values =
+        prm.scene.bodies == "tribobrake" ? prm.sweep.E_pad_values() :
+                                           std::vector<double>{model.E_ref};
+      const unsigned int n_points = E_values.size() * prm.sweep.mu.size();
+      pcout << "Sweep: " << prm.sweep.mu.size() << " friction coefficients x "
+            << E_values.size() << " pad moduli = " << n_points
+            << " points, " << (reduced_method ? "reduced" : "full")
+            << " solver, band " << es.f_min << "-" << es.f_max << " Hz"
+            << std::endl;
+      const auto start = std::chrono::steady_clock::now();
+      for (const double mu : prm.sweep.mu)
+        for (const double E : E_values)
+          {
+            TimerOutput::Scope t(timer, reduced_method ? "reduced solve" :
+                                                         "full solve");
+            Point p;
+            p.mu    = mu;
+            p.E_pad = E;
+            if (reduced_method)
+              {
+                const auto pairs = reduced.solve(E, mu, prm.damping.alpha,
+                                                 prm.damping.beta, es.f_min,
+                                                 es.f_max);
+                for (const auto &r : pairs)
+                  {
+                    p.lambda.push_back(r.lambda);
+                    p.residual.push_back(r.residual);
+                    p.q.push_back(r.q);
+                  }
+              }
+            else
+              {
+                p.full = eigen::solve_full(model.parts(), E, mu,
+                                           prm.damping.alpha, prm.damping.beta,
+                                           band, pcout);
+                band.initial_nev = std::max<unsigned int>(
+                  40, 1.5 * p.full.size() + 20);
+                for (const auto &r : p.full)
+                  {
+                    p.lambda.push_back(r.lambda);
+                    p.residual.push_back(r.residual);
+                  }
+              }
+            points.push_back(std::move(p));
+            const double elapsed =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                            start)
+                .count();
+            const unsigned int k = points.size();
+            if (k == n_points || !reduced_method || k % 10 == 0)
+              pcout << "  point " << k << " of " << n_points << " (mu = " << mu
+                    << ", E_pad = " << std::setprecision(4) << E
+                    << " Pa): " << points.back().lambda.size()
+                    << " modes, elapsed " << std::setprecision(3) << elapsed
+                    << " s, remaining ~" << elapsed * (n_points - k) / k
+                    << " s" << std::setprecision(6) << std::endl;
+          }
+    }
+
+    void
+    ComplexEigenvalueAnalysis::check_against_full()
+    {
+      const auto &es = prm.eigensolver;
+      if (es.method != "reduced" || es.n_check_points == 0 || points.empty())
+        return;
+      TimerOutput::Scope t(timer, "check against full");
+      // The most unstable point, then evenly spaced ones.
+      std::vector<unsigned int> chosen;
+      unsigned int              worst = 0;
+      double                    max_re = -1e300;
+      for (unsigned int p = 0; p < points.size(); ++p)
+        for (const auto &l : points[p].lambda)
+          if (l.real() > max_re)
+            {
+              max_re = l.real();
+              worst  = p;
+            }
+      chosen.push_back(worst);
+      for (unsigned int k = 0; chosen.size() < std::min<std::size_t>(es.n_check_points, points.size()); ++k)
+        {
+          const unsigned int p =
+            (k * (points.size() - 1)) / std::max(1u, es.n_check_points - 1);
+          if (std::find(chosen.begin(), chosen.end(), p) == chosen.end())
+            chosen.push_back(p);
+          if (k > points.size())
+            break;
+        }
+      pcout << "Checking the reduced solver against the full solver at "
+            << chosen.size() << " points" << std::endl;
+      eigen::BandOptions band{es.f_min, es.f_max, es.target_frequency,
+                              es.tolerance, 40};
+      double max_df = 0, max_dre = 0;
+      unsigned int missed = 0;
+      for (const unsigned int p : chosen)
+        {
+          const auto full =
+            eigen::solve_full(model.parts(), points[p].E_pad, points[p].mu,
+                              prm.damping.alpha, prm.damping.beta, band, pcout);
+          // Every full eigenvalue must have a reduced counterpart.
+          for (const auto &f : full)
+            {
+              double best = 1e300;
+              std::complex<double> match;
+              for (const auto &r : points[p].lambda)
+                if (std::abs(r - f.lambda) < best)
+                  {
+                    best  = std::abs(r - f.lambda);
+                    match = r;
+                  }
+              const double df = std::abs(match.imag() - f.lambda.imag()) /
+                                f.lambda.imag();
+              const double dre = std::abs(match.real() - f.lambda.real()) /
+                                 (std::abs(f.lambda.real()) + 1.);
+              if (df > 1e-2)
+                ++missed;
+              max_df  = std::max(max_df, df);
+              max_dre = std::max(max_dre, dre);
+              std::ostringstream row;
+              row << std::setprecision(12) << p << ',' << points[p].mu << ','
+                  << points[p].E_pad << ',' << f.lambda.real() << ','
+                  << f.lambda.imag() / (2 * M_PI) << ',' << match.real()
+                  << ',' << match.imag() / (2 * M_PI) << ',' << df << ','
+                  << dre;
+              check_rows.push_back(row.str());
+            }
+          if (full.size() != points[p].lambda.size())
+            pcout << "  point " << p << ": full solver " << full.size()
+                  << " modes in the band, reduced " << points[p].lambda.size()
+                  << " (modes at the band edges may differ)" << std::endl;
+        }
+      pcout << "Reduced against full: largest frequency error "
+            << 100 * max_df << " %, largest growth-rate error " << 100 * max_dre
+            << " % of |Re| + 1 1/s";
+      if (missed > 0)
+        pcout << "; WARNING: " << missed
+              << " full eigenvalues without a reduced one within 1 %";
+      pcout << std::endl;
+    }
+
+    void
+    ComplexEigenvalueAnalysis::classify()
+    {
+      TimerOutput::Scope t(timer, "tracking and classification");
+      const double tol = prm.eigensolver.unstable_tolerance;
+      int next_id = 0;
+      unsigned int first = 0;
+      while (first < points.size())
+        {
+          // One friction coefficient's run of points.
+          unsigned int last = first;
+          while (last + 1 < points.size() && points[last + 1].mu == points[first].mu)
+            ++last;
+          std::vector<std::vector<std::complex<double>>> lambdas;
+          std::vector<Eigen::MatrixXd>                   macs;
+          std::vector<double>                            E;
+          std::vector<unsigned int>                      index;
+          for (unsigned int p = first; p <= last; ++p)
+            {
+              lambdas.push_back(points[p].lambda);
+              E.push_back(points[p].E_pad);
+              index.push_back(p);
+              Eigen::MatrixXd mac;
+              if (p > first)
+                {
+                  const auto &a = points[p - 1], &b = points[p];
+                  mac.resize(a.lambda.size(), b.lambda.size());
+                  for (unsigned int i = 0; i < a.lambda.size(); ++i)
+                    for (unsigned int j = 0; j < b.lambda.size(); ++j)
+                      if (!a.q.empty())
+                        mac(i, j) = eigen::ReducedModel::mac(a.q[i], b.q[j]);
+                      else
+                        {
+                          const auto &x = a.full[i], &y = b.full[j];
+                          const double rr = x.re * y.re + x.im * y.im,
+                                       ri = x.re * y.im - x.im * y.re;
+                          const double nx = x.re.norm_sqr() + x.im.norm_sqr(),
+                                       ny = y.re.norm_sqr() + y.im.norm_sqr();
+                          mac(i, j) = (rr * rr + ri * ri) / (nx * ny);
+                        }
+                }
+              macs.push_back(mac);
+            }
+          const auto tracks = eigen::track_modes(lambdas, macs, next_id);
+          for (unsigned int p = first; p <= last; ++p)
+            for (unsigned int m = 0; m < points[p].lambda.size(); ++m)
+              {
+                const auto l = points[p].lambda[m];
+                modes.push_back({p, points[p].mu, points[p].E_pad, m, l,
+                                 points[p].residual[m], l.real() > tol,
+                                 tracks[p - first][m]});
+              }
+          const auto r = eigen::find_unstable_regions(points[first].mu, E, index,
+                                                      lambdas, tracks, tol);
+          regions.insert(regions.end(), r.begin(), r.end());
+          first = last + 1;
+        }
+
+      pcout << "\nUnstable regions (Re lambda > " << tol << " 1/s):" << std::endl;
+      if (regions.empty())
+        pcout << "  none: every eigenvalue in the band is stable" << std::endl;
+      for (const auto &r : regions)
+        pcout << "  mu = " << r.mu << ": E_pad " << std::setprecision(4)
+              << r.E_min << " - " << r.E_max << " Pa (log10 "
+              << std::log10(r.E_min) << " - " << std::log10(r.E_max)
+              << "), " << std::setprecision(5) << r.f_min << " - " << r.f_max
+              << " Hz, max Re lambda " << r.max_re << " 1/s, track " << r.track
+              << (r.partner_track >= 0 ?
+                    " locked in with track " + std::to_string(r.partner_track) :
+                    std::string())
+              << std::setprecision(6) << std::endl;
+    }
+
+    void
+    ComplexEigenvalueAnalysis::write_mode(const physics::PETScVector &re,
+                                          const physics::PETScVector &im,
+                                          const std::string &         name) const
+    {
+      physics::PETScVector ghosted_re(model.locally_owned_dofs,
+                                      model.locally_relevant_dofs, comm),
+        ghosted_im(model.locally_owned_dofs, model.locally_relevant_dofs, comm);
+      physics::PETScVector r = re, i = im;
+      model.constraints.distribute(r);
+      model.constraints.distribute(i);
+      ghosted_re = r;
+      ghosted_im = i;
+
+      DataOut<3> data_out;
+      data_out.attach_dof_handler(model.dof_handler);
+      const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+        vector(3, DataComponentInterpretation::component_is_part_of_vector);
+      data_out.add_data_vector(ghosted_re,
+                               std::vector<std::string>(3, "mode_real"),
+                               DataOut<3>::type_dof_data, vector);
+      data_out.add_data_vector(ghosted_im,
+                               std::vector<std::string>(3, "mode_imag"),
+                               DataOut<3>::type_dof_data, vector);
+      Vector<float> material(model.triangulation.n_active_cells());
+      for (const auto &cell : model.triangulation.active_cell_iterators())
+        material[cell->active_cell_index()] = cell->material_id();
+      data_out.add_data_vector(material, "body");
+      data_out.build_patches(model.mapping, model.fe.degree,
+                             DataOut<3>::curved_inner_cells);
+      data_out.write_vtu_with_pvtu_record(work_dir + "/modes/", name, 0, comm,
+                                          0, 0);
+    }
+
+    void
+    ComplexEigenvalueAnalysis::output_results() const
+    {
+      TimerOutput::Scope t(timer, "output");
+      const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+      if (root)
+        {
+          std::ofstream csv(work_dir + "/eigenvalues.csv");
+          csv << "point,mu,E_pad_Pa,mode,re_per_s,freq_Hz,zeta,unstable,track\n"
+              << std::setprecision(12);
+          std::ofstream res(work_dir + "/eigenvalue_residuals.csv");
+          res << "point,mode,relative_residual\n" << std::setprecision(6);
+          for (const auto &m : modes)
+            {
+              csv << m.point << ',' << m.mu << ',' << m.E_pad << ',' << m.mode
+                  << ',' << m.lambda.real() << ','
+                  << m.lambda.imag() / (2 * M_PI) << ','
+                  << -m.lambda.real() / std::abs(m.lambda) << ','
+                  << (m.unstable ? 1 : 0) << ',' << m.track << '\n';
+              res << m.point << ',' << m.mode << ',' << m.residual << '\n';
+            }
+          std::ofstream reg(work_dir + "/unstable_regions.csv");
+          reg << "mu,E_pad_min_Pa,E_pad_max_Pa,freq_min_Hz,freq_max_Hz,"
+                 "max_re_per_s,track\n"
+              << std::setprecision(12);
+          for (const auto &r : regions)
+            reg << r.mu << ',' << r.E_min << ',' << r.E_max << ',' << r.f_min
+                << ',' << r.f_max << ',' << r.max_re << ',' << r.track << '\n';
+          if (!check_rows.empty())
+            {
+              std::ofstream chk(work_dir + "/check_full.csv");
+              chk << "point,mu,E_pad_Pa,full_re_per_s,full_freq_Hz,"
+                     "reduced_re_per_s,reduced_freq_Hz,freq_rel_error,"
+                     "re_error_per_abs_re_plus_1\n";
+              for (const auto &r : check_rows)
+                chk << r << '\n';
+            }
+        }
+
+      // Mode shapes: all modes of the first point, and each unstable region
+      // at its largest growth rate (or, with Output/Mode shapes = all, every
+      // mode of every point).
+      std::vector<std::pair<unsigned int, unsigned int>> chosen;
+      const std::string what = prm.output.mode_output;
+      if (what != "none")
+        for (const auto &m : modes)
+          {
+            const bool unstable_peak = std::any_of(
+              regions.begin(), regions.end(), [&](const auto &r) {
+                return r.track == m.track && r.point_of_max == m.point;
+              });
+            if (what == "all" || m.point == 0 || unstable_peak)
+              chosen.emplace_back(m.point, m.mode);
+          }
+      std::vector<std::pair<double, std::string>> records;
+      for (const auto &[p, k] : chosen)
+        {
+          const auto &pt = points[p];
+          physics::PETScVector re, im;
+          if (!pt.q.empty())
+            reduced.expand(pt.q[k], re, im);
+          else if (!pt.full.empty())
+            {
+              re = pt.full[k].re;
+              im = pt.full[k].im;
+            }
+          else
+            continue;
+          std::ostringstream name;
+          name << "mode_p" << p << "_m" << k << "_" << std::fixed
+               << std::setprecision(1) << pt.lambda[k].imag() / (2 * M_PI)
+               << "Hz_re" << std::setprecision(3) << pt.lambda[k].real();
+          write_mode(re, im, name.str());
+          records.emplace_back(records.size(), "modes/" + name.str() + ".pvtu");
+        }
+      if (root)
+        {
+          std::ofstream pvd(work_dir + "/modes.pvd");
+          DataOutBase::write_pvd_record(pvd, records);
+        }
+      MPI_Barrier(comm);
+      if (root)
+        {
+          if (fs::exists(prm.output.directory))
+            fs::remove_all(prm.output.directory);
+          fs::rename(work_dir, prm.output.directory);
+        }
+      MPI_Barrier(comm);
+      pcout << "Results written to " << prm.output.directory << "/" << std::endl;
+    }
+
+    void
+    ComplexEigenvalueAnalysis::run()
+    {
+      pcout << "squeal: complex eigenvalue analysis ("
+            << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s))"
+            << std::endl;
+      setup_system();
+      solve_sweep();
+      check_against_full();
+      classify();
+      output_results();
+      timer.print_summary();
+    }
+  } // namespace cea
+} // namespace squeal

@@ -1,0 +1,310 @@
+// Segment-based (mortar) integration of the linear friction interface. Both
+// contact faces lie in the plane z = 0, so the projection onto the slave
+// (pad) face plane is the identity on (x, y): each pad face is clipped against
+// the disc faces it overlaps, every overlap polygon is cut into a fan of
+// triangles, and a Gauss rule on each triangle gives points whose reference
+// coordinates are found in both cells. Exact integration over the overlap is
+// what makes the mortar coupling pass the patch test where node-to-segment
+// collocation does not.
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/geometry_info.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <squeal/contact/friction_coupling.h>
+#include <squeal/geometry/tribobrake_mesh.h>
+
+#include <array>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace contact
+  {
+    using namespace dealii;
+    using Polygon = std::vector<Point<2>>;
+
+    namespace
+    {
+      double
+      cross(const Point<2> &o, const Point<2> &a, const Point<2> &b)
+      {
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+      }
+
+      double
+      signed_area(const Polygon &p)
+      {
+        double a = 0;
+        for (unsigned int i = 0; i < p.size(); ++i)
+          {
+            const auto &u = p[i], &v = p[(i + 1) % p.size()];
+            a += u[0] * v[1] - v[0] * u[1];
+          }
+        return a / 2;
+      }
+
+      // The (x, y) outline of a face at z = 0, counter-clockwise.
+      Polygon
+      face_outline(const typename DoFHandler<3>::face_iterator &face)
+      {
+        // deal.II numbers quadrilateral vertices lexicographically.
+        Polygon p;
+        for (const unsigned int v : {0u, 1u, 3u, 2u})
+          p.emplace_back(face->vertex(v)[0], face->vertex(v)[1]);
+        if (signed_area(p) < 0)
+          std::reverse(p.begin(), p.end());
+        return p;
+      }
+
+      // Sutherland-Hodgman: the part of convex `subject` inside convex `clip`
+      // (both counter-clockwise).
+      Polygon
+      clip_polygon(const Polygon &subject, const Polygon &clip)
+      {
+        Polygon out = subject;
+        for (unsigned int e = 0; e < clip.size() && !out.empty(); ++e)
+          {
+            const Point<2> a = clip[e], b = clip[(e + 1) % clip.size()];
+            const Polygon  in = out;
+            out.clear();
+            for (unsigned int i = 0; i < in.size(); ++i)
+              {
+                const Point<2> p = in[i], q = in[(i + 1) % in.size()];
+                const double   cp = cross(a, b, p), cq = cross(a, b, q);
+                if (cp >= 0)
+                  out.push_back(p);
+                if ((cp >= 0) != (cq >= 0))
+                  out.push_back(p + (q - p) * (cp / (cp - cq)));
+              }
+          }
+        return out;
+      }
+
+      struct FaceRef
+      {
+        DoFHandler<3>::active_cell_iterator cell;
+        unsigned int                        face;
+        Polygon                             outline;
+        BoundingBox<2>                      box;
+      };
+
+      std::vector<FaceRef>
+      contact_faces(const DoFHandler<3> &dof_handler,
+                    const types::boundary_id id,
+                    const bool only_owned)
+      {
+        std::vector<FaceRef> faces;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (!only_owned || cell->is_locally_owned())
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == id)
+                {
+                  FaceRef r{cell, f, face_outline(cell->face(f)), {}};
+                  std::vector<Point<2>> pts(r.outline.begin(), r.outline.end());
+                  r.box = BoundingBox<2>(pts);
+                  faces.push_back(r);
+                }
+        return faces;
+      }
+
+      bool
+      boxes_overlap(const BoundingBox<2> &a, const BoundingBox<2> &b)
+      {
+        const auto &pa = a.get_boundary_points(), &pb = b.get_boundary_points();
+        for (unsigned int d = 0; d < 2; ++d)
+          if (pa.second[d] < pb.first[d] || pb.second[d] < pa.first[d])
+            return false;
+        return true;
+      }
+
+      bool
+      to_unit(const Mapping<3> &                          mapping,
+              const DoFHandler<3>::active_cell_iterator &cell,
+              const Point<3> &                            p,
+              Point<3> &                                  unit)
+      {
+        try
+          {
+            unit = mapping.transform_real_to_unit_cell(cell, p);
+          }
+        catch (const typename Mapping<3>::ExcTransformationFailed &)
+          {
+            return false;
+          }
+        return GeometryInfo<3>::is_inside_unit_cell(unit, 1e-6);
+      }
+    } // namespace
+
+    std::vector<CouplingPoint>
+    interface_quadrature(const DoFHandler<3> &dof_handler,
+                         const Mapping<3> &   mapping,
+                         const std::string &  rule,
+                         const unsigned int   n_points)
+    {
+      const auto pad_faces =
+        contact_faces(dof_handler, geometry::boundary::pad_contact, true);
+      const auto disc_faces =
+        contact_faces(dof_handler, geometry::boundary::disc_contact, false);
+
+      std::vector<CouplingPoint> points;
+      double                     covered = 0, pad_area = 0;
+      for (const auto &pf : pad_faces)
+        {
+          pad_area += std::abs(signed_area(pf.outline));
+          if (rule == "nodal")
+            {
+              // Gauss-Lobatto points of the pad face, each on the disc face
+              // below it.
+              const QGaussLobatto<2> q(n_points);
+              FEFaceValues<3> fv(mapping, dof_handler.get_fe(), q,
+                                 update_quadrature_points | update_JxW_values);
+              fv.reinit(pf.cell, pf.face);
+              for (unsigned int k = 0; k < q.size(); ++k)
+                {
+                  const Point<3> x = fv.quadrature_point(k);
+                  Point<3>       pu, du;
+                  const bool     on_pad = to_unit(mapping, pf.cell, x, pu);
+                  Assert(on_pad, ExcInternalError());
+                  (void)on_pad;
+                  for (const auto &df : disc_faces)
+                    if (df.box.point_inside(Point<2>(x[0], x[1]), 1e-9) &&
+                        to_unit(mapping, df.cell, x, du))
+                      {
+                        points.push_back({pf.cell, df.cell, pu, du, fv.JxW(k)});
+                        covered += fv.JxW(k);
+                        break;
+                      }
+                }
+              continue;
+            }
+          const QGaussSimplex<2> tri(n_points);
+          for (const auto &df : disc_faces)
+            {
+              if (!boxes_overlap(pf.box, df.box))
+                continue;
+              const Polygon overlap = clip_polygon(pf.outline, df.outline);
+              if (overlap.size() < 3)
+                continue;
+              const double area = std::abs(signed_area(overlap));
+              if (area < 1e-14 * std::abs(signed_area(pf.outline)))
+                continue;
+              for (unsigned int t = 1; t + 1 < overlap.size(); ++t)
+                {
+                  const Point<2> a = overlap[0], b = overlap[t],
+                                 c = overlap[t + 1];
+                  const double tri_area = std::abs(cross(a, b, c)) / 2;
+                  for (unsigned int k = 0; k < tri.size(); ++k)
+                    {
+                      const Point<2> r = tri.point(k);
+                      const Point<2> x2 = a + (b - a) * r[0] + (c - a) * r[1];
+                      const Point<3> x(x2[0], x2[1], 0.);
+                      Point<3>       pu, du;
+                      // The straight-sided outline can stray outside a
+                      // curved disc cell by a sliver; the point then still
+                      // belongs to this cell's polynomial extension.
+                      pu = mapping.transform_real_to_unit_cell(pf.cell, x);
+                      du = mapping.transform_real_to_unit_cell(df.cell, x);
+                      const double w = tri.weight(k) * 2 * tri_area;
+                      points.push_back({pf.cell, df.cell, pu, du, w});
+                      covered += w;
+                    }
+                }
+            }
+        }
+      if (!pad_faces.empty() && covered < (1 - 1e-6) * pad_area)
+        throw std::runtime_error(
+          "friction interface: only " +
+          std::to_string(100 * covered / pad_area) +
+          " % of the pad face lies over the disc; check Geometry/Pad radius");
+      return points;
+    }
+
+    void
+    add_interface_sparsity(const std::vector<CouplingPoint> & points,
+                           const AffineConstraints<double> &constraints,
+                           DynamicSparsityPattern &          dsp)
+    {
+      std::set<std::pair<DoFHandler<3>::active_cell_iterator,
+                         DoFHandler<3>::active_cell_iterator>>
+        pairs;
+      for (const auto &p : points)
+        pairs.emplace(p.pad_cell, p.disc_cell);
+      for (const auto &[pad, disc] : pairs)
+        {
+          const unsigned int n = pad->get_fe().n_dofs_per_cell();
+          std::vector<types::global_dof_index> dofs(2 * n), d(n);
+          pad->get_dof_indices(d);
+          std::copy(d.begin(), d.end(), dofs.begin());
+          disc->get_dof_indices(d);
+          std::copy(d.begin(), d.end(), dofs.begin() + n);
+          constraints.add_entries_local_to_global(dofs, dsp, false);
+        }
+    }
+
+    void
+    assemble_interface(const std::vector<CouplingPoint> &  points,
+                       const AffineConstraints<double> &   constraints,
+                       const double                        k,
+                       const Tensor<1, 3> &                tangent,
+                       PETScWrappers::MPI::SparseMatrix &  K_n,
+                       PETScWrappers::MPI::SparseMatrix &  K_t)
+    {
+      // Points come grouped by (pad cell, disc cell) pair: accumulate each
+      // pair's local matrices and distribute them once.
+      if (points.empty())
+        return;
+      const auto &       fe = points[0].pad_cell->get_fe();
+      const unsigned int n  = fe.n_dofs_per_cell();
+      FullMatrix<double> local_n(2 * n, 2 * n), local_t(2 * n, 2 * n);
+      std::vector<double> g(2 * n), f(2 * n);
+      std::vector<types::global_dof_index> dofs(2 * n), d(n);
+
+      const auto flush = [&](const CouplingPoint &p) {
+        p.pad_cell->get_dof_indices(d);
+        std::copy(d.begin(), d.end(), dofs.begin());
+        p.disc_cell->get_dof_indices(d);
+        std::copy(d.begin(), d.end(), dofs.begin() + n);
+        constraints.distribute_local_to_global(local_n, dofs, K_n);
+        constraints.distribute_local_to_global(local_t, dofs, K_t);
+        local_n = 0;
+        local_t = 0;
+      };
+
+      for (unsigned int q = 0; q < points.size(); ++q)
+        {
+          const CouplingPoint &p = points[q];
+          // g: gap u_z(disc) - u_z(pad); f: friction force pattern, -t on
+          // the pad rows (internal force of the traction +mu p t on the pad)
+          // and +t on the disc rows.
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const unsigned int c  = fe.system_to_component_index(i).first;
+              const double       vp = fe.shape_value(i, p.pad_unit);
+              const double       vd = fe.shape_value(i, p.disc_unit);
+              g[i]     = (c == 2) ? -vp : 0.;
+              g[n + i] = (c == 2) ? vd : 0.;
+              f[i]     = -tangent[c] * vp;
+              f[n + i] = tangent[c] * vd;
+            }
+          const double kw = k * p.weight;
+          for (unsigned int i = 0; i < 2 * n; ++i)
+            for (unsigned int j = 0; j < 2 * n; ++j)
+              if (g[j] != 0.)
+                {
+                  local_n(i, j) += kw * g[i] * g[j];
+                  local_t(i, j) += kw * f[i] * g[j];
+                }
+          const bool last = q + 1 == points.size() ||
+                            points[q + 1].pad_cell != p.pad_cell ||
+                            points[q + 1].disc_cell != p.disc_cell;
+          if (last)
+            flush(p);
+        }
+    }
+  } // namespace contact
+} // namespace squeal

@@ -1,0 +1,165 @@
+// SLEPc-based sparse eigensolvers: the quadratic eigenproblem of the complex
+// eigenvalue analysis (PEP/TOAR) and the symmetric generalised problem whose
+// real modes build the reduced basis (EPS/Krylov-Schur). Both use one real
+// shift and enlarge the number of requested eigenvalues until the band is
+// covered; see the header for why this cannot miss a mode.
+
+#include <deal.II/base/exceptions.h>
+
+#include <squeal/eigen/qep_solver.h>
+
+#include <petscksp.h>
+#include <slepceps.h>
+#include <slepcpep.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      void
+      check(const PetscErrorCode ierr, const char *what)
+      {
+        if (ierr != 0)
+          throw std::runtime_error(std::string("SLEPc/PETSc call failed: ") +
+                                   what + " (error code " +
+                                   std::to_string(ierr) + ")");
+      }
+
+      void
+      use_mumps(ST st)
+      {
+        KSP ksp;
+        PC  pc;
+        check(STSetType(st, STSINVERT), "STSetType");
+        check(STGetKSP(st, &ksp), "STGetKSP");
+        check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+        check(KSPGetPC(ksp, &pc), "KSPGetPC");
+        check(PCSetType(pc, PCLU), "PCSetType");
+        check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS),
+              "PCFactorSetMatSolverType");
+      }
+
+      PETScVector
+      make_vector(const PETScMatrix &A)
+      {
+        PETScVector v(A.locally_owned_range_indices(), A.get_mpi_communicator());
+        return v;
+      }
+    } // namespace
+
+    std::vector<UndampedMode>
+    solve_undamped(const PETScMatrix &M,
+                   const PETScMatrix &K,
+                   const BandOptions &options,
+                   const double       factor,
+                   const bool         symmetric,
+                   ConditionalOStream &pcout)
+    {
+      const double   w_t    = 2. * numbers::PI * options.target_frequency;
+      const double   sigma  = -w_t * w_t;
+      const double   w_1    = 2. * numbers::PI * options.f_max * factor;
+      const double   needed = w_1 * w_1 - sigma;
+      const PetscInt n      = M.m();
+      PetscInt       nev    = std::min<PetscInt>(options.initial_nev, n);
+      for (unsigned int attempt = 0;; ++attempt)
+        {
+          EPS eps;
+          check(EPSCreate(M.get_mpi_communicator(), &eps), "EPSCreate");
+          check(EPSSetOperators(eps, K, M), "EPSSetOperators");
+          check(EPSSetProblemType(eps, symmetric ? EPS_GHEP : EPS_GNHEP),
+                "EPSSetProblemType");
+          check(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
+          check(EPSSetTarget(eps, sigma), "EPSSetTarget");
+          check(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE),
+                "EPSSetWhichEigenpairs");
+          ST st;
+          check(EPSGetST(eps, &st), "EPSGetST");
+          use_mumps(st);
+          check(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT),
+                "EPSSetDimensions");
+          check(EPSSetTolerances(eps, options.tolerance, 2000),
+                "EPSSetTolerances");
+          check(EPSSolve(eps), "EPSSolve");
+          PetscInt nconv;
+          check(EPSGetConverged(eps, &nconv), "EPSGetConverged");
+          std::vector<UndampedMode> modes;
+          double                    farthest = 0;
+          PETScVector               xr = make_vector(M), xi = make_vector(M);
+          for (PetscInt i = 0; i < nconv; ++i)
+            {
+              PetscScalar kr, ki;
+              check(EPSGetEigenpair(eps, i, &kr, &ki, xr, xi),
+                    "EPSGetEigenpair");
+              farthest = std::max(farthest, std::hypot(kr - sigma, ki));
+              if (kr <= w_1 * w_1 && ki >= 0)
+                {
+                  UndampedMode m{{kr, ki}, xr, xi};
+                  if (ki == 0)
+                    m.im = 0;
+                  modes.push_back(std::move(m));
+                }
+            }
+          EPSDestroy(&eps);
+          if (farthest >= needed || nconv >= n)
+            {
+              std::sort(modes.begin(), modes.end(),
+                        [](const auto &a, const auto &b) {
+                          return a.omega2.real() < b.omega2.real();
+                        });
+              pcout << "  undamped eigensolver: " << nconv
+                    << " eigenvalues converged, " << modes.size()
+                    << " modes up to " << options.f_max * factor << " Hz"
+                    << std::endl;
+              return modes;
+            }
+          if (attempt > 8)
+            throw std::runtime_error(
+              "undamped eigensolver: could not converge eigenvalues up to " +
+              std::to_string(options.f_max * factor) + " Hz");
+          // The count of modes grows roughly linearly with omega for
+          // plate-like structures (omega^2 ratio square-rooted); aim beyond.
+          const double ratio = farthest > 0 ? std::sqrt(needed / farthest) : 2.;
+          nev = std::min<PetscInt>(
+            n, std::max<PetscInt>(nev + 10, nconv * ratio * 1.25 + 10));
+          pcout << "  undamped eigensolver: band not covered, asking for "
+                << nev << " eigenvalues" << std::endl;
+        }
+    }
+
+    DirectSolver::DirectSolver(const PETScMatrix &A)
+    {
+      KSP k;
+      PC  pc;
+      check(KSPCreate(A.get_mpi_communicator(), &k), "KSPCreate");
+      check(KSPSetOperators(k, A, A), "KSPSetOperators");
+      check(KSPSetType(k, KSPPREONLY), "KSPSetType");
+      check(KSPGetPC(k, &pc), "KSPGetPC");
+      check(PCSetType(pc, PCLU), "PCSetType");
+      check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS),
+            "PCFactorSetMatSolverType");
+      check(KSPSetUp(k), "KSPSetUp");
+      ksp = k;
+    }
+
+    DirectSolver::~DirectSolver()
+    {
+      KSP k = static_cast<KSP>(ksp);
+      KSPDestroy(&k);
+    }
+
+    void
+    DirectSolver::solve(const PETScVector &b, PETScVector &x) const
+    {
+      check(KSPSolve(static_cast<KSP>(ksp), b, x), "KSPSolve");
+    }
+  } // namespace eigen
+} // namespace squeal

@@ -1,0 +1,313 @@
+// The reduced-order model of the complex eigenvalue analysis: basis
+// construction from real modes plus friction enrichment, projection of every
+// matrix part with one sparse-times-dense product each, and the dense
+// companion eigenproblem of a sweep point. Residuals on the full model come
+// from Gram matrices of the projected parts, so checking every reduced
+// eigenpair costs no sparse work per sweep point.
+
+#include <deal.II/base/mpi.h>
+
+#include <squeal/eigen/reduced_model.h>
+
+#include <petscmat.h>
+
+#include <cmath>
+#include <stdexcept>
+
+extern "C" void
+dgeev_(const char *jobvl, const char *jobvr, const int *n, double *a,
+       const int *lda, double *wr, double *wi, double *vl, const int *ldvl,
+       double *vr, const int *ldvr, double *work, const int *lwork, int *info);
+
+namespace squeal
+{
+  namespace eigen
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      void
+      sum_over_ranks(Eigen::MatrixXd &A, MPI_Comm comm)
+      {
+        MPI_Allreduce(MPI_IN_PLACE, A.data(), A.size(), MPI_DOUBLE, MPI_SUM,
+                      comm);
+      }
+
+      // A * B for a sparse PETSc matrix and the locally owned rows of a
+      // dense n x m matrix B (column-major), as the local rows of the result.
+      Eigen::MatrixXd
+      multiply(const PETScMatrix &A, Eigen::MatrixXd &B)
+      {
+        const PetscInt n_local = B.rows(), m = B.cols();
+        Mat            Bd, W;
+        if (MatCreateDense(A.get_mpi_communicator(), n_local, PETSC_DECIDE,
+                           A.m(), m, B.data(), &Bd) != 0 ||
+            MatMatMult(A, Bd, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &W) != 0)
+          throw std::runtime_error("reduced model: MatMatMult failed");
+        const PetscScalar *w;
+        PetscInt           lda;
+        MatDenseGetLDA(W, &lda);
+        MatDenseGetArrayRead(W, &w);
+        Eigen::MatrixXd result(n_local, m);
+        for (PetscInt j = 0; j < m; ++j)
+          for (PetscInt i = 0; i < n_local; ++i)
+            result(i, j) = w[i + j * lda];
+        MatDenseRestoreArrayRead(W, &w);
+        MatDestroy(&W);
+        MatDestroy(&Bd);
+        return result;
+      }
+
+      Eigen::VectorXd
+      local_part(const PETScVector &v, const IndexSet &owned)
+      {
+        Eigen::VectorXd x(owned.n_elements());
+        for (unsigned int k = 0; k < x.size(); ++k)
+          x[k] = v(owned.nth_index_in_set(k));
+        return x;
+      }
+    } // namespace
+
+    void
+    ReducedModel::build(const physics::MatrixParts &model,
+                        const std::vector<double> & sample_moduli,
+                        const BandOptions &         band,
+                        const double                band_factor,
+                        const bool                  enrichment,
+                        ConditionalOStream &        pcout)
+    {
+      comm  = model.mass->get_mpi_communicator();
+      owned = model.mass->locally_owned_range_indices();
+      std::vector<Eigen::VectorXd> columns;
+      for (const double s : sample_moduli)
+        {
+          PETScMatrix K;
+          model.symmetric_stiffness(s, K);
+          pcout << "  reduced basis: sample E_pad = " << s << " Pa" << std::endl;
+          const auto modes =
+            solve_undamped(*model.mass, K, band, band_factor, true, pcout);
+          std::unique_ptr<DirectSolver> solver;
+          if (enrichment)
+            solver = std::make_unique<DirectSolver>(K);
+          PETScVector force(owned, comm), response(owned, comm);
+          for (const auto &mode : modes)
+            {
+              columns.push_back(local_part(mode.re, owned));
+              if (enrichment)
+                {
+                  model.friction->vmult(force, mode.re);
+                  if (force.l2_norm() > 0)
+                    {
+                      solver->solve(force, response);
+                      columns.push_back(local_part(response, owned));
+                    }
+                }
+            }
+        }
+      Eigen::MatrixXd B(owned.n_elements(), columns.size());
+      for (unsigned int j = 0; j < columns.size(); ++j)
+        B.col(j) = columns[j];
+      columns.clear();
+      project(model, B);
+      pcout << "  reduced basis: " << B.cols() << " vectors, " << V.cols()
+            << " M-orthonormal directions kept" << std::endl;
+    }
+
+    void
+    ReducedModel::build_from_vectors(const physics::MatrixParts &    model,
+                                     const std::vector<PETScVector> &vectors)
+    {
+      comm  = model.mass->get_mpi_communicator();
+      owned = model.mass->locally_owned_range_indices();
+      Eigen::MatrixXd B(owned.n_elements(), vectors.size());
+      for (unsigned int j = 0; j < vectors.size(); ++j)
+        B.col(j) = local_part(vectors[j], owned);
+      project(model, B);
+    }
+
+    void
+    ReducedModel::project(const physics::MatrixParts &model, Eigen::MatrixXd &B)
+    {
+      E_ref = model.E_ref;
+      const std::array<const PETScMatrix *, n_parts> parts = {
+        {model.mass, model.rest, model.pad, model.normal, model.friction}};
+      std::array<Eigen::MatrixXd, n_parts> W;
+      for (unsigned int k = 0; k < n_parts; ++k)
+        W[k] = multiply(*parts[k], B);
+
+      // M-orthonormalisation through the Gram matrix B^T M B.
+      Eigen::MatrixXd gram = B.transpose() * W[mass];
+      sum_over_ranks(gram, comm);
+      gram = (gram + gram.transpose()).eval() / 2;
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(gram);
+      const double largest = es.eigenvalues().maxCoeff();
+      std::vector<int> keep;
+      for (int i = 0; i < es.eigenvalues().size(); ++i)
+        if (es.eigenvalues()[i] > 1e-8 * largest)
+          keep.push_back(i);
+      Eigen::MatrixXd T(B.cols(), keep.size());
+      for (unsigned int j = 0; j < keep.size(); ++j)
+        T.col(j) = es.eigenvectors().col(keep[j]) /
+                   std::sqrt(es.eigenvalues()[keep[j]]);
+      V = B * T;
+      for (auto &w : W)
+        w = (w * T).eval();
+
+      for (unsigned int k = 0; k < n_parts; ++k)
+        {
+          Ar[k] = V.transpose() * W[k];
+          sum_over_ranks(Ar[k], comm);
+          for (unsigned int l = k; l < n_parts; ++l)
+            {
+              G[k][l] = W[k].transpose() * W[l];
+              sum_over_ranks(G[k][l], comm);
+            }
+        }
+      Mr = Ar[mass];
+    }
+
+    std::vector<EigenPair>
+    solve_full(const physics::MatrixParts &model,
+               const double                E_pad,
+               const double                mu,
+               const double                alpha,
+               const double                beta,
+               const BandOptions &         band,
+               ConditionalOStream &        pcout)
+    {
+      PETScMatrix K;
+      model.stiffness(E_pad, mu, K);
+      const auto modes = solve_undamped(*model.mass, K, band, 1.5,
+                                        mu == 0. /* K symmetric */,
+                                        pcout);
+      std::vector<PETScVector> vectors;
+      for (const auto &m : modes)
+        {
+          vectors.push_back(m.re);
+          if (m.omega2.imag() != 0.)
+            vectors.push_back(m.im);
+        }
+      ReducedModel projected;
+      projected.build_from_vectors(model, vectors);
+      std::vector<EigenPair> pairs;
+      for (const auto &r :
+           projected.solve(E_pad, mu, alpha, beta, band.f_min, band.f_max))
+        {
+          EigenPair p;
+          p.lambda   = r.lambda;
+          p.residual = r.residual;
+          projected.expand(r.q, p.re, p.im);
+          pairs.push_back(std::move(p));
+        }
+      return pairs;
+    }
+
+    double
+    ReducedModel::mac(const Eigen::VectorXcd &a, const Eigen::VectorXcd &b)
+    {
+      return std::norm(a.dot(b)) / (a.squaredNorm() * b.squaredNorm());
+    }
+
+    std::vector<ReducedEigenPair>
+    ReducedModel::solve(const double E_pad,
+                        const double mu,
+                        const double alpha,
+                        const double beta,
+                        const double f_min,
+                        const double f_max) const
+    {
+      const int       r = Mr.rows();
+      const double    s = E_pad / E_ref;
+      const Eigen::MatrixXd K_struct = Ar[rest] + s * Ar[pad];
+      const Eigen::MatrixXd K = K_struct + Ar[normal] + mu * Ar[friction];
+      const Eigen::MatrixXd C = alpha * Mr + beta * K_struct;
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Mr);
+
+      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * r, 2 * r);
+      A.topRightCorner(r, r)    = Eigen::MatrixXd::Identity(r, r);
+      A.bottomLeftCorner(r, r)  = -lu.solve(K);
+      A.bottomRightCorner(r, r) = -lu.solve(C);
+
+      const int           n = 2 * r;
+      std::vector<double> wr(n), wi(n), vr(n * n), work(1);
+      int                 lwork = -1, info = 0, one = 1;
+      double              dummy;
+      dgeev_("N", "V", &n, A.data(), &n, wr.data(), wi.data(), &dummy, &one,
+             vr.data(), &n, work.data(), &lwork, &info);
+      lwork = static_cast<int>(work[0]);
+      work.resize(lwork);
+      dgeev_("N", "V", &n, A.data(), &n, wr.data(), wi.data(), &dummy, &one,
+             vr.data(), &n, work.data(), &lwork, &info);
+      if (info != 0)
+        throw std::runtime_error("reduced model: LAPACK dgeev failed, info = " +
+                                 std::to_string(info));
+
+      // Coefficients of the parts in the residual and in the norms.
+      std::vector<ReducedEigenPair> pairs;
+      for (int j = 0; j < n; ++j)
+        {
+          if (wi[j] == 0.)
+            continue;
+          const bool first_of_pair = wi[j] > 0;
+          if (first_of_pair)
+            {
+              const std::complex<double> lambda(wr[j], wi[j]);
+              const double f = lambda.imag() / (2 * M_PI);
+              if (f >= f_min && f <= f_max)
+                {
+                  Eigen::VectorXcd q(r);
+                  for (int i = 0; i < r; ++i)
+                    q[i] = {vr[i + j * n], vr[i + (j + 1) * n]};
+                  q.normalize();
+                  // h_kl = q^H G_kl q, h_lk = conj(h_kl) for real G.
+                  std::array<std::array<std::complex<double>, n_parts>, n_parts> h;
+                  for (unsigned int k = 0; k < n_parts; ++k)
+                    for (unsigned int l = k; l < n_parts; ++l)
+                      {
+                        h[k][l] = q.dot(G[k][l] * q);
+                        h[l][k] = std::conj(h[k][l]);
+                      }
+                  const auto norm = [&](const std::array<std::complex<double>, n_parts> &c) {
+                    std::complex<double> sum = 0;
+                    for (unsigned int k = 0; k < n_parts; ++k)
+                      for (unsigned int l = 0; l < n_parts; ++l)
+                        sum += std::conj(c[k]) * c[l] * h[k][l];
+                    return std::sqrt(std::max(0., sum.real()));
+                  };
+                  const std::complex<double> one_lb = 1. + lambda * beta;
+                  const double res = norm({lambda * lambda + lambda * alpha,
+                                           one_lb, s * one_lb, 1., mu});
+                  const double scale =
+                    std::norm(lambda) * norm({1., 0., 0., 0., 0.}) +
+                    std::abs(lambda) * norm({alpha, beta, beta * s, 0., 0.}) +
+                    norm({0., 1., s, 1., mu});
+                  pairs.push_back({lambda, q, res / scale});
+                }
+              ++j; // skip the conjugate
+            }
+        }
+      std::sort(pairs.begin(), pairs.end(), [](const auto &a, const auto &b) {
+        return a.lambda.imag() < b.lambda.imag();
+      });
+      return pairs;
+    }
+
+    void
+    ReducedModel::expand(const Eigen::VectorXcd &q,
+                         physics::PETScVector &  re,
+                         physics::PETScVector &  im) const
+    {
+      const Eigen::VectorXd xr = V * q.real(), xi = V * q.imag();
+      re.reinit(owned, comm);
+      im.reinit(owned, comm);
+      for (unsigned int k = 0; k < owned.n_elements(); ++k)
+        {
+          re(owned.nth_index_in_set(k)) = xr[k];
+          im(owned.nth_index_in_set(k)) = xi[k];
+        }
+      re.compress(VectorOperation::insert);
+      im.compress(VectorOperation::insert);
+    }
+  } // namespace eigen
+} // namespace squeal

@@ -1,0 +1,128 @@
+// Mode tracking and the unstable regions of a sweep (see the header).
+
+#include <squeal/eigen/tracking.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    std::vector<std::vector<int>>
+    track_modes(const std::vector<std::vector<std::complex<double>>> &lambdas,
+                const std::vector<Eigen::MatrixXd> &                  macs,
+                int &                                                 next_id,
+                const double                                          weight)
+    {
+      std::vector<std::vector<int>> tracks(lambdas.size());
+      for (unsigned int p = 0; p < lambdas.size(); ++p)
+        {
+          tracks[p].assign(lambdas[p].size(), -1);
+          if (p > 0)
+            {
+              std::vector<std::tuple<double, int, int>> candidates;
+              for (unsigned int i = 0; i < lambdas[p - 1].size(); ++i)
+                for (unsigned int j = 0; j < lambdas[p].size(); ++j)
+                  {
+                    const double jump = std::abs(lambdas[p][j] - lambdas[p - 1][i]) /
+                                        std::abs(lambdas[p - 1][i]);
+                    const double cost = (1 - macs[p](i, j)) + weight * jump;
+                    if (cost < 1.5)
+                      candidates.emplace_back(cost, i, j);
+                  }
+              std::sort(candidates.begin(), candidates.end());
+              std::vector<bool> used_prev(lambdas[p - 1].size(), false);
+              for (const auto &[cost, i, j] : candidates)
+                if (!used_prev[i] && tracks[p][j] < 0)
+                  {
+                    used_prev[i] = true;
+                    tracks[p][j] = tracks[p - 1][i];
+                  }
+            }
+          for (auto &t : tracks[p])
+            if (t < 0)
+              t = next_id++;
+        }
+      return tracks;
+    }
+
+    std::vector<UnstableRegion>
+    find_unstable_regions(
+      const double                                          mu,
+      const std::vector<double> &                           E,
+      const std::vector<unsigned int> &                     point_index,
+      const std::vector<std::vector<std::complex<double>>> &lambdas,
+      const std::vector<std::vector<int>> &                 tracks,
+      const double                                          tolerance)
+    {
+      std::vector<UnstableRegion> regions;
+      std::map<int, UnstableRegion> open; // by track
+      const auto close = [&](const int track) {
+        auto it = open.find(track);
+        if (it != open.end())
+          {
+            regions.push_back(it->second);
+            open.erase(it);
+          }
+      };
+      for (unsigned int p = 0; p < lambdas.size(); ++p)
+        {
+          std::vector<int> unstable_now;
+          for (unsigned int m = 0; m < lambdas[p].size(); ++m)
+            {
+              const auto   l = lambdas[p][m];
+              const double f = l.imag() / (2 * M_PI);
+              if (l.real() <= tolerance)
+                continue;
+              const int t = tracks[p][m];
+              unstable_now.push_back(t);
+              auto it = open.find(t);
+              if (it == open.end())
+                it = open
+                       .emplace(t, UnstableRegion{mu, E[p], E[p], f, f,
+                                                  l.real(), t, -1,
+                                                  point_index[p]})
+                       .first;
+              auto &r = it->second;
+              r.E_max = E[p];
+              r.f_min = std::min(r.f_min, f);
+              r.f_max = std::max(r.f_max, f);
+              if (l.real() > r.max_re)
+                {
+                  r.max_re       = l.real();
+                  r.point_of_max = point_index[p];
+                  // partner: the stable mode nearest in frequency here
+                  double best = 1e300;
+                  for (unsigned int k = 0; k < lambdas[p].size(); ++k)
+                    if (k != m && lambdas[p][k].real() < 0 &&
+                        std::abs(lambdas[p][k].imag() - l.imag()) < best)
+                      {
+                        best            = std::abs(lambdas[p][k].imag() - l.imag());
+                        r.partner_track = tracks[p][k];
+                      }
+                }
+            }
+          std::vector<int> to_close;
+          for (const auto &[t, r] : open)
+            if (std::find(unstable_now.begin(), unstable_now.end(), t) ==
+                unstable_now.end())
+              to_close.push_back(t);
+          for (const int t : to_close)
+            close(t);
+        }
+      std::vector<int> rest;
+      for (const auto &[t, r] : open)
+        rest.push_back(t);
+      for (const int t : rest)
+        close(t);
+      std::sort(regions.begin(), regions.end(),
+                [](const auto &a, const auto &b) {
+                  return std::tie(a.f_min, a.E_min) < std::tie(b.f_min, b.E_min);
+                });
+      return regions;
+    }
+  } // namespace eigen
+} // namespace squeal

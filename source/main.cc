@@ -1,0 +1,79 @@
+// squeal's program: read a .prm file, echo the resolved parameters, run the
+// analysis it asks for. Usage:
+//   squeal [--overwrite] FILE.prm      run
+//   squeal --validate FILE.prm         parse and report, run nothing
+//   squeal --print-parameters          every parameter with default, range, help
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <squeal/cea/complex_eigenvalue_analysis.h>
+#include <squeal/parameters/parameters.h>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+int
+main(int argc, char **argv)
+{
+  using namespace dealii;
+  // PETSc reads options from the command line; squeal's own must not reach it.
+  int   petsc_argc = 1;
+  char **petsc_argv = argv;
+  Utilities::MPI::MPI_InitFinalize mpi(petsc_argc, petsc_argv, 1);
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  const std::string usage =
+    "usage: squeal [--overwrite] FILE.prm | --validate FILE.prm | "
+    "--print-parameters";
+  try
+    {
+      squeal::parameters::AllParameters prm;
+      ParameterHandler                  handler;
+      if (args.size() == 1 && args[0] == "--print-parameters")
+        {
+          prm.declare_parameters(handler);
+          if (root)
+            handler.print_parameters(std::cout, ParameterHandler::PRM);
+          return 0;
+        }
+      bool        validate = false, overwrite = false;
+      std::string file;
+      for (const auto &a : args)
+        if (a == "--validate")
+          validate = true;
+        else if (a == "--overwrite")
+          overwrite = true;
+        else if (!a.empty() && a[0] == '-')
+          throw std::runtime_error("unknown option '" + a + "'\n" + usage);
+        else if (file.empty())
+          file = a;
+        else
+          throw std::runtime_error("more than one parameter file given\n" + usage);
+      if (file.empty())
+        throw std::runtime_error("no parameter file given\n" + usage);
+
+      prm.read(handler, file);
+      prm.output.overwrite = prm.output.overwrite || overwrite;
+      if (validate)
+        {
+          if (root)
+            std::cout << file << ": valid (scene " << prm.scene.bodies
+                      << ", " << prm.sweep.mu.size() << " x "
+                      << prm.sweep.n_E_pad << " sweep points, output to "
+                      << prm.output.directory << ")" << std::endl;
+          return 0;
+        }
+      squeal::cea::ComplexEigenvalueAnalysis analysis(prm, handler,
+                                                      MPI_COMM_WORLD);
+      analysis.run();
+    }
+  catch (const std::exception &e)
+    {
+      if (root)
+        std::cerr << "squeal: error: " << e.what() << std::endl;
+      return 1;
+    }
+  return 0;
+}

@@ -1,0 +1,548 @@
+// Declaration and parsing of every run parameter. Each subsection is a struct
+// whose defaults are the values in the header, so the defaults live in one
+// place; this file only gives them ranges and help texts with SI units, and
+// checks the few rules that join several parameters.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <squeal/parameters/parameters.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace parameters
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      std::string
+      str(const double x)
+      {
+        std::ostringstream s;
+        s.precision(12);
+        s << x;
+        return s.str();
+      }
+
+      std::string
+      list(const std::vector<double> &v)
+      {
+        std::string s;
+        for (unsigned int i = 0; i < v.size(); ++i)
+          s += (i ? ", " : "") + str(v[i]);
+        return s;
+      }
+
+      const Patterns::Double positive(0., Patterns::Double::max_double_value);
+
+      void
+      check(const bool ok, const std::string &what)
+      {
+        if (!ok)
+          throw std::runtime_error("invalid parameter: " + what);
+      }
+    } // namespace
+
+    void
+    Scene::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Scene");
+      prm.declare_entry("Bodies",
+                        bodies,
+                        Patterns::Selection("tribobrake|disc"),
+                        "tribobrake: disc, pad, support and springs with the "
+                        "friction interface; disc: the clamped disc alone.");
+      prm.leave_subsection();
+    }
+
+    void
+    Scene::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Scene");
+      bodies = prm.get("Bodies");
+      prm.leave_subsection();
+    }
+
+    void
+    Geometry::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Geometry");
+      prm.declare_entry("Disc inner radius", str(disc_inner_radius), positive,
+                        "Radius of the clamped inner face of the disc [m].");
+      prm.declare_entry("Disc outer radius", str(disc_outer_radius), positive,
+                        "Outer radius of the disc [m].");
+      prm.declare_entry("Disc thickness", str(disc_thickness), positive,
+                        "Disc thickness [m]; the disc occupies -h <= z <= 0.");
+      prm.declare_entry("Pad size", str(pad_size), positive,
+                        "Edge of the cubic pad [m].");
+      prm.declare_entry("Pad radius", str(pad_radius), positive,
+                        "Radius of the pad face centre on the disc [m] (the "
+                        "thesis does not state it).");
+      prm.declare_entry("Support length", str(support_length), positive,
+                        "Length of the support beam along the disc axis [m].");
+      prm.leave_subsection();
+    }
+
+    void
+    Geometry::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Geometry");
+      disc_inner_radius = prm.get_double("Disc inner radius");
+      disc_outer_radius = prm.get_double("Disc outer radius");
+      disc_thickness    = prm.get_double("Disc thickness");
+      pad_size          = prm.get_double("Pad size");
+      pad_radius        = prm.get_double("Pad radius");
+      support_length    = prm.get_double("Support length");
+      prm.leave_subsection();
+      check(disc_inner_radius < disc_outer_radius,
+            "Geometry/Disc inner radius must be below Disc outer radius");
+      check(pad_radius - pad_size / 2 >= disc_inner_radius &&
+              pad_radius + pad_size / 2 <= disc_outer_radius,
+            "Geometry/Pad radius: the pad face must lie on the disc annulus");
+    }
+
+    void
+    Mesh::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Mesh");
+      prm.declare_entry("Finite element degree", std::to_string(fe_degree),
+                        Patterns::Integer(1, 4),
+                        "Polynomial degree of the Lagrange hexahedra (1-4).");
+      prm.declare_entry("Disc cells circumference",
+                        std::to_string(disc_cells_circumference),
+                        Patterns::Integer(8, 1024),
+                        "Cells around the disc (the disc mesh is "
+                        "axisymmetric so that doublets stay exact).");
+      prm.declare_entry("Disc cells radial", std::to_string(disc_cells_radial),
+                        Patterns::Integer(1, 256), "Cells across the annulus.");
+      prm.declare_entry("Disc cells thickness",
+                        std::to_string(disc_cells_thickness),
+                        Patterns::Integer(1, 64), "Cells through the disc.");
+      prm.declare_entry("Pad cells side", std::to_string(pad_cells_side),
+                        Patterns::Integer(1, 64),
+                        "Cells along each edge of the pad face (the support "
+                        "shares them).");
+      prm.declare_entry("Pad cells thickness",
+                        std::to_string(pad_cells_thickness),
+                        Patterns::Integer(1, 64), "Cells through the pad.");
+      prm.declare_entry("Support cells length",
+                        std::to_string(support_cells_length),
+                        Patterns::Integer(1, 400),
+                        "Cells along the support; a multiple of (springs "
+                        "per row - 1) puts a node at every spring station.");
+      prm.declare_entry("Disc refinements under pad",
+                        std::to_string(disc_refinements_under_pad),
+                        Patterns::Integer(0, 4),
+                        "Local refinement cycles of the disc cells under the "
+                        "pad footprint (hanging nodes are constrained).");
+      prm.leave_subsection();
+    }
+
+    void
+    Mesh::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh");
+      fe_degree                  = prm.get_integer("Finite element degree");
+      disc_cells_circumference   = prm.get_integer("Disc cells circumference");
+      disc_cells_radial          = prm.get_integer("Disc cells radial");
+      disc_cells_thickness       = prm.get_integer("Disc cells thickness");
+      pad_cells_side             = prm.get_integer("Pad cells side");
+      pad_cells_thickness        = prm.get_integer("Pad cells thickness");
+      support_cells_length       = prm.get_integer("Support cells length");
+      disc_refinements_under_pad = prm.get_integer("Disc refinements under pad");
+      prm.leave_subsection();
+    }
+
+    namespace
+    {
+      void
+      declare_material(ParameterHandler &prm,
+                       const std::string &name,
+                       const Material &   m,
+                       const std::string &note)
+      {
+        prm.enter_subsection(name);
+        prm.declare_entry("Young's modulus", str(m.youngs_modulus), positive,
+                          "Young's modulus [Pa]." + note);
+        prm.declare_entry("Poisson's ratio", str(m.poisson_ratio),
+                          Patterns::Double(-0.99, 0.49), "Poisson's ratio [-].");
+        prm.declare_entry("Density", str(m.density), positive,
+                          "Mass density [kg/m^3].");
+        prm.leave_subsection();
+      }
+
+      void
+      parse_material(ParameterHandler &prm, const std::string &name, Material &m)
+      {
+        prm.enter_subsection(name);
+        m.youngs_modulus = prm.get_double("Young's modulus");
+        m.poisson_ratio  = prm.get_double("Poisson's ratio");
+        m.density        = prm.get_double("Density");
+        prm.leave_subsection();
+      }
+    } // namespace
+
+    void
+    Materials::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Materials");
+      declare_material(prm, "Disc", disc, "");
+      declare_material(prm, "Pad", pad,
+                       " Reference value; a sweep rescales the pad stiffness.");
+      declare_material(prm, "Support", support,
+                       " Its Density is used only when Support density "
+                       "model = steel.");
+      prm.declare_entry("Support density model", support_density_model,
+                        Patterns::Selection("updated|steel"),
+                        "updated: the density calibrated so that the support "
+                        "modes match the thesis (Support updated density); "
+                        "steel: Support/Density.");
+      prm.declare_entry("Support updated density", str(support_updated_density),
+                        positive,
+                        "Calibrated support density [kg/m^3] (model updating, "
+                        "see benchmarks/cea_tribobrake/README.md).");
+      prm.leave_subsection();
+    }
+
+    void
+    Materials::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Materials");
+      parse_material(prm, "Disc", disc);
+      parse_material(prm, "Pad", pad);
+      parse_material(prm, "Support", support);
+      support_density_model   = prm.get("Support density model");
+      support_updated_density = prm.get_double("Support updated density");
+      prm.leave_subsection();
+      if (support_density_model == "updated")
+        support.density = support_updated_density;
+    }
+
+    void
+    Springs::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Springs");
+      prm.declare_entry("Rows per side", std::to_string(n_rows_per_side),
+                        Patterns::Integer(0, 8),
+                        "Rows of springs on each of the two support faces "
+                        "normal to the sliding direction.");
+      prm.declare_entry("Springs per row", std::to_string(n_per_row),
+                        Patterns::Integer(1, 401),
+                        "Springs along each row, evenly spaced over the "
+                        "support length, both ends included.");
+      prm.declare_entry("Stiffness", str(stiffness),
+                        Patterns::Double(0., Patterns::Double::max_double_value),
+                        "Stiffness of one spring in the sliding direction "
+                        "[N/m]; far ends fixed.");
+      prm.leave_subsection();
+    }
+
+    void
+    Springs::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Springs");
+      n_rows_per_side = prm.get_integer("Rows per side");
+      n_per_row       = prm.get_integer("Springs per row");
+      stiffness       = prm.get_double("Stiffness");
+      prm.leave_subsection();
+    }
+
+    void
+    Damping::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Damping");
+      prm.declare_entry("Alpha", str(alpha),
+                        Patterns::Double(0., Patterns::Double::max_double_value),
+                        "Rayleigh mass coefficient alpha [1/s].");
+      prm.declare_entry("Beta", str(beta),
+                        Patterns::Double(0., Patterns::Double::max_double_value),
+                        "Rayleigh stiffness coefficient beta [s] (multiplies "
+                        "the structural stiffness, not the interface).");
+      prm.leave_subsection();
+    }
+
+    void
+    Damping::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Damping");
+      alpha = prm.get_double("Alpha");
+      beta  = prm.get_double("Beta");
+      prm.leave_subsection();
+    }
+
+    Tensor<1, 3>
+    Interface::sliding_tangent() const
+    {
+      Tensor<1, 3> t;
+      if (sliding_direction == "rotation")
+        t[1] = (rotation_sense == "counterclockwise" ? 1. : -1.);
+      else
+        {
+          const auto v = Utilities::string_to_double(
+            Utilities::split_string_list(sliding_direction, ','));
+          t[0] = v[0];
+          t[1] = v[1];
+          t /= t.norm();
+        }
+      return t;
+    }
+
+    void
+    Interface::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Interface");
+      prm.declare_entry("Normal stiffness", str(normal_stiffness),
+                        Patterns::Double(0., Patterns::Double::max_double_value),
+                        "Normal interface stiffness per unit area [N/m^3]; "
+                        "the thesis' 2.5895e8 N/m over 1e-4 m^2.");
+      prm.declare_entry("Sliding direction", sliding_direction,
+                        Patterns::Anything(),
+                        "`rotation` (the disc's velocity at the pad centre) "
+                        "or two numbers `tx, ty`: the direction in the disc "
+                        "plane in which the disc slides under the pad.");
+      prm.declare_entry("Rotation sense", rotation_sense,
+                        Patterns::Selection("counterclockwise|clockwise"),
+                        "Sense of the disc rotation about +z.");
+      prm.declare_entry("Quadrature", quadrature,
+                        Patterns::Selection("mortar|nodal"),
+                        "mortar: segment-based integration over the overlap "
+                        "of pad and disc faces; nodal: one point per pad-face "
+                        "node (node-pair elements on matching meshes).");
+      prm.leave_subsection();
+    }
+
+    void
+    Interface::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Interface");
+      normal_stiffness  = prm.get_double("Normal stiffness");
+      sliding_direction = prm.get("Sliding direction");
+      rotation_sense    = prm.get("Rotation sense");
+      quadrature        = prm.get("Quadrature");
+      prm.leave_subsection();
+      if (sliding_direction != "rotation")
+        {
+          const auto parts =
+            Utilities::split_string_list(sliding_direction, ',');
+          bool ok = parts.size() == 2;
+          double n2 = 0;
+          for (const auto &p : parts)
+            {
+              char *end = nullptr;
+              const double v = std::strtod(p.c_str(), &end);
+              ok = ok && end != p.c_str() && *end == '\0';
+              n2 += v * v;
+            }
+          check(ok && n2 > 0,
+                "Interface/Sliding direction must be `rotation` or two "
+                "numbers `tx, ty` not both zero, not '" +
+                  sliding_direction + "'");
+        }
+    }
+
+    void
+    Eigensolver::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Eigensolver");
+      prm.declare_entry("Minimum frequency", str(f_min), positive,
+                        "Lower end of the band [Hz].");
+      prm.declare_entry("Maximum frequency", str(f_max), positive,
+                        "Upper end of the band [Hz].");
+      prm.declare_entry("Method", method, Patterns::Selection("full|reduced"),
+                        "full: SLEPc quadratic eigensolver (TOAR, shift-and-"
+                        "invert with MUMPS) at every point; reduced: modal "
+                        "basis with friction enrichment, dense LAPACK per "
+                        "point, checked against full at a few points.");
+      prm.declare_entry("Tolerance", str(tolerance),
+                        Patterns::Double(1e-15, 1e-3),
+                        "Relative convergence tolerance of SLEPc.");
+      prm.declare_entry("Target frequency", str(target_frequency), positive,
+                        "The real shift is -2 pi times this [Hz]: eigenvalues "
+                        "are found in order of distance from it, i.e. of "
+                        "frequency; it must not be an eigenvalue.");
+      prm.declare_entry("Unstable tolerance", str(unstable_tolerance),
+                        Patterns::Double(0., Patterns::Double::max_double_value),
+                        "An eigenvalue is unstable when Re(lambda) exceeds "
+                        "this [1/s].");
+      prm.declare_entry("Reduced sample moduli", list(reduced_sample_moduli),
+                        Patterns::List(positive, 1, 20),
+                        "Pad moduli [Pa] at which real modes of the symmetric "
+                        "system build the reduced basis.");
+      prm.declare_entry("Reduced band factor", str(reduced_band_factor),
+                        Patterns::Double(1., 10.),
+                        "Modes up to this factor times the maximum frequency "
+                        "enter the reduced basis.");
+      prm.declare_entry("Reduced enrichment", reduced_enrichment ? "true" : "false",
+                        Patterns::Bool(),
+                        "Add K^-1 K_t Phi (static response to the friction "
+                        "forces of the basis modes) to the basis.");
+      prm.declare_entry("Check points", std::to_string(n_check_points),
+                        Patterns::Integer(0, 100),
+                        "Sweep points at which the reduced solver is checked "
+                        "against the full solver.");
+      prm.leave_subsection();
+    }
+
+    void
+    Eigensolver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Eigensolver");
+      f_min              = prm.get_double("Minimum frequency");
+      f_max              = prm.get_double("Maximum frequency");
+      method             = prm.get("Method");
+      tolerance          = prm.get_double("Tolerance");
+      target_frequency   = prm.get_double("Target frequency");
+      unstable_tolerance = prm.get_double("Unstable tolerance");
+      reduced_sample_moduli = Utilities::string_to_double(
+        Utilities::split_string_list(prm.get("Reduced sample moduli")));
+      reduced_band_factor = prm.get_double("Reduced band factor");
+      reduced_enrichment  = prm.get_bool("Reduced enrichment");
+      n_check_points      = prm.get_integer("Check points");
+      prm.leave_subsection();
+      check(f_min < f_max,
+            "Eigensolver/Minimum frequency (" + str(f_min) +
+              " Hz) must be below Eigensolver/Maximum frequency (" +
+              str(f_max) + " Hz)");
+    }
+
+    std::vector<double>
+    Sweep::E_pad_values() const
+    {
+      std::vector<double> v(n_E_pad);
+      for (unsigned int i = 0; i < n_E_pad; ++i)
+        v[i] = (n_E_pad == 1) ?
+                 E_pad_min :
+                 E_pad_min * std::pow(E_pad_max / E_pad_min,
+                                      double(i) / (n_E_pad - 1));
+      return v;
+    }
+
+    void
+    Sweep::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Sweep");
+      prm.declare_entry("Pad modulus min", str(E_pad_min), positive,
+                        "Smallest pad Young's modulus of the sweep [Pa].");
+      prm.declare_entry("Pad modulus max", str(E_pad_max), positive,
+                        "Largest pad Young's modulus of the sweep [Pa].");
+      prm.declare_entry("Pad modulus points", std::to_string(n_E_pad),
+                        Patterns::Integer(1, 10000),
+                        "Log-spaced pad moduli from min to max (1: min only).");
+      prm.declare_entry("Friction coefficients", list(mu),
+                        Patterns::List(Patterns::Double(0., 10.), 1, 1000),
+                        "Coulomb friction coefficients of the sweep [-].");
+      prm.leave_subsection();
+    }
+
+    void
+    Sweep::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Sweep");
+      E_pad_min = prm.get_double("Pad modulus min");
+      E_pad_max = prm.get_double("Pad modulus max");
+      n_E_pad   = prm.get_integer("Pad modulus points");
+      mu        = Utilities::string_to_double(
+        Utilities::split_string_list(prm.get("Friction coefficients")));
+      prm.leave_subsection();
+      check(E_pad_min <= E_pad_max,
+            "Sweep/Pad modulus min must not exceed Sweep/Pad modulus max");
+    }
+
+    void
+    Output::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Output");
+      prm.declare_entry("Directory", directory, Patterns::FileName(),
+                        "Output directory; a run refuses to replace an "
+                        "existing one unless Overwrite is true or --overwrite "
+                        "is given.");
+      prm.declare_entry("Overwrite", overwrite ? "true" : "false",
+                        Patterns::Bool(),
+                        "Replace an existing output directory.");
+      prm.declare_entry("Mode shapes", mode_output,
+                        Patterns::Selection("none|unstable and first|all"),
+                        "Which mode shapes go to modes.pvd: every unstable "
+                        "mode at its largest growth rate and all modes of "
+                        "the first point, all modes of every point, or none.");
+      prm.leave_subsection();
+    }
+
+    void
+    Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      directory   = prm.get("Directory");
+      overwrite   = prm.get_bool("Overwrite");
+      mode_output = prm.get("Mode shapes");
+      prm.leave_subsection();
+      check(!directory.empty(), "Output/Directory must not be empty");
+    }
+
+    void
+    AllParameters::declare_parameters(ParameterHandler &prm) const
+    {
+      scene.declare_parameters(prm);
+      geometry.declare_parameters(prm);
+      mesh.declare_parameters(prm);
+      materials.declare_parameters(prm);
+      springs.declare_parameters(prm);
+      damping.declare_parameters(prm);
+      interface.declare_parameters(prm);
+      eigensolver.declare_parameters(prm);
+      sweep.declare_parameters(prm);
+      output.declare_parameters(prm);
+    }
+
+    void
+    AllParameters::parse_parameters(ParameterHandler &prm)
+    {
+      scene.parse_parameters(prm);
+      geometry.parse_parameters(prm);
+      mesh.parse_parameters(prm);
+      materials.parse_parameters(prm);
+      springs.parse_parameters(prm);
+      damping.parse_parameters(prm);
+      interface.parse_parameters(prm);
+      eigensolver.parse_parameters(prm);
+      sweep.parse_parameters(prm);
+      output.parse_parameters(prm);
+    }
+
+    void
+    AllParameters::read(ParameterHandler &prm, const std::string &filename)
+    {
+      std::ifstream in(filename);
+      if (!in)
+        throw std::runtime_error("cannot open parameter file '" + filename +
+                                 "'");
+      declare_parameters(prm);
+      try
+        {
+          prm.parse_input(filename, "", false, true);
+        }
+      catch (const ExceptionBase &e)
+        {
+          // deal.II's own text names the line and the entry; keep only it.
+          std::ostringstream info;
+          e.print_info(info);
+          throw std::runtime_error("in parameter file '" + filename + "': " +
+                                   Utilities::trim(info.str()));
+        }
+      try
+        {
+          parse_parameters(prm);
+        }
+      catch (const std::exception &e)
+        {
+          throw std::runtime_error("in parameter file '" + filename +
+                                   "': " + e.what());
+        }
+    }
+  } // namespace parameters
+} // namespace squeal

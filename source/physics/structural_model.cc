@@ -1,0 +1,279 @@
+// Assembly of the structural matrices of a scene: linear elasticity per body
+// (the pad separately, so that a sweep over its modulus rescales one matrix),
+// the support's springs and the friction interface. All matrices share one
+// sparsity pattern so that combining them is a cheap MatAXPY.
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <squeal/contact/friction_coupling.h>
+#include <squeal/geometry/tribobrake_mesh.h>
+#include <squeal/physics/structural_model.h>
+
+#include <cmath>
+
+namespace squeal
+{
+  namespace physics
+  {
+    using namespace dealii;
+
+    StructuralModel::StructuralModel(const parameters::AllParameters &prm,
+                                     MPI_Comm                         comm)
+      : prm(prm)
+      , comm(comm)
+      , triangulation(comm)
+      , fe(FE_Q<3>(prm.mesh.fe_degree), 3)
+      , mapping(prm.mesh.fe_degree)
+      , dof_handler(triangulation)
+    {}
+
+    void
+    set_constrained_diagonal(const AffineConstraints<double> &constraints,
+                             const IndexSet &                 locally_owned,
+                             const double                     value,
+                             PETScMatrix &                    matrix)
+    {
+      for (const auto i : locally_owned)
+        if (constraints.is_constrained(i))
+          matrix.set(i, i, value);
+      matrix.compress(VectorOperation::insert);
+    }
+
+    void
+    StructuralModel::setup_and_assemble(ConditionalOStream &pcout)
+    {
+      const bool brake = prm.scene.bodies == "tribobrake";
+      geometry::make_tribobrake_mesh(prm.geometry, prm.mesh, brake,
+                                     triangulation);
+      dof_handler.distribute_dofs(fe);
+      locally_owned_dofs = dof_handler.locally_owned_dofs();
+      DoFTools::extract_locally_relevant_dofs(dof_handler,
+                                              locally_relevant_dofs);
+
+      constraints.clear();
+      constraints.reinit(locally_relevant_dofs);
+      DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+      VectorTools::interpolate_boundary_values(mapping, dof_handler,
+                                               geometry::boundary::clamped,
+                                               Functions::ZeroFunction<3>(3),
+                                               constraints);
+      constraints.close();
+
+      std::vector<contact::CouplingPoint> interface_points;
+      if (brake)
+        interface_points = contact::interface_quadrature(
+          dof_handler, mapping, prm.interface.quadrature,
+          prm.interface.quadrature == "nodal" ? prm.mesh.fe_degree + 1 :
+                                                prm.mesh.fe_degree + 2);
+
+      DynamicSparsityPattern dsp(locally_relevant_dofs);
+      DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+      contact::add_interface_sparsity(interface_points, constraints, dsp);
+      SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs,
+                                                 comm, locally_relevant_dofs);
+      for (auto *m : {&mass, &stiffness_rest, &stiffness_pad,
+                      &interface_normal, &interface_friction})
+        m->reinit(locally_owned_dofs, locally_owned_dofs, dsp, comm);
+
+      pcout << "Mesh: " << triangulation.n_active_cells() << " cells, "
+            << dof_handler.n_dofs() << " DoFs (degree " << prm.mesh.fe_degree
+            << "), " << constraints.n_constraints() << " constrained"
+            << std::endl;
+
+      E_ref = prm.materials.pad.youngs_modulus;
+      assemble_elasticity();
+      if (brake)
+        {
+          add_springs(pcout);
+          contact::assemble_interface(interface_points, constraints,
+                                      prm.interface.normal_stiffness,
+                                      prm.interface.sliding_tangent(),
+                                      interface_normal, interface_friction);
+          interface_normal.compress(VectorOperation::add);
+          interface_friction.compress(VectorOperation::add);
+        }
+
+      // Constrained rows: K_ii = d, M_ii = d / omega_s^2, all parts else 0.
+      double trace = 0, n_free = 0;
+      for (const auto i : locally_owned_dofs)
+        if (!constraints.is_constrained(i))
+          {
+            trace += stiffness_rest.diag_element(i) +
+                     stiffness_pad.diag_element(i);
+            n_free += 1;
+          }
+      constrained_diagonal = Utilities::MPI::sum(trace, comm) /
+                             std::max(1., Utilities::MPI::sum(n_free, comm));
+      const double omega_s = 2. * numbers::PI * 1e3 * prm.eigensolver.f_max;
+      set_constrained_diagonal(constraints, locally_owned_dofs,
+                               constrained_diagonal, stiffness_rest);
+      set_constrained_diagonal(constraints, locally_owned_dofs,
+                               constrained_diagonal / (omega_s * omega_s), mass);
+      for (auto *m : {&stiffness_pad, &interface_normal, &interface_friction})
+        set_constrained_diagonal(constraints, locally_owned_dofs, 0., *m);
+    }
+
+    void
+    StructuralModel::assemble_elasticity()
+    {
+      const QGauss<3>    quadrature(fe.degree + 1);
+      FEValues<3>        fe_values(mapping, fe, quadrature,
+                            update_values | update_gradients |
+                              update_JxW_values);
+      const unsigned int n = fe.n_dofs_per_cell();
+      FullMatrix<double> cell_k(n, n), cell_m(n, n);
+      std::vector<types::global_dof_index> dofs(n);
+
+      const auto &mat = prm.materials;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const parameters::Material &m =
+              cell->material_id() == geometry::material::disc ? mat.disc :
+              cell->material_id() == geometry::material::pad  ? mat.pad :
+                                                                mat.support;
+            const double E = m.youngs_modulus, nu = m.poisson_ratio;
+            const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+            const double mu     = E / (2 * (1 + nu));
+
+            fe_values.reinit(cell);
+            cell_k = 0;
+            cell_m = 0;
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                const double JxW = fe_values.JxW(q);
+                for (unsigned int i = 0; i < n; ++i)
+                  {
+                    const unsigned int ci = fe.system_to_component_index(i).first;
+                    const Tensor<1, 3> gi = fe_values.shape_grad(i, q);
+                    const double       vi = fe_values.shape_value(i, q);
+                    for (unsigned int j = 0; j < n; ++j)
+                      {
+                        const unsigned int cj =
+                          fe.system_to_component_index(j).first;
+                        const Tensor<1, 3> gj = fe_values.shape_grad(j, q);
+                        double k = lambda * gi[ci] * gj[cj] + mu * gi[cj] * gj[ci];
+                        if (ci == cj)
+                          {
+                            k += mu * (gi * gj);
+                            cell_m(i, j) += m.density * vi *
+                                            fe_values.shape_value(j, q) * JxW;
+                          }
+                        cell_k(i, j) += k * JxW;
+                      }
+                  }
+              }
+            cell->get_dof_indices(dofs);
+            constraints.distribute_local_to_global(
+              cell_k, dofs,
+              cell->material_id() == geometry::material::pad ? stiffness_pad :
+                                                               stiffness_rest);
+            constraints.distribute_local_to_global(cell_m, dofs, mass);
+          }
+      for (auto *m : {&mass, &stiffness_rest, &stiffness_pad})
+        m->compress(VectorOperation::add);
+    }
+
+    void
+    StructuralModel::add_springs(ConditionalOStream &pcout)
+    {
+      const auto &g = prm.geometry;
+      const auto &s = prm.springs;
+      if (s.n_rows_per_side == 0 || s.stiffness == 0)
+        return;
+      // Spring stations: on the two support faces y = +-pad_size/2, rows at
+      // x = the centres of n_rows equal strips of the face width, and along
+      // the support at evenly spaced heights, both ends included.
+      std::vector<Point<3>> stations;
+      for (const double y : {-g.pad_size / 2, g.pad_size / 2})
+        for (unsigned int r = 0; r < s.n_rows_per_side; ++r)
+          for (unsigned int k = 0; k < s.n_per_row; ++k)
+            stations.emplace_back(g.pad_radius - g.pad_size / 2 +
+                                    g.pad_size * (r + 0.5) / s.n_rows_per_side,
+                                    y,
+                                    g.pad_size +
+                                      (s.n_per_row == 1 ?
+                                         g.support_length / 2 :
+                                         g.support_length * k / (s.n_per_row - 1)));
+
+      // Nearest support node to each station (the y DoF of the vertex).
+      std::vector<double>                  best(stations.size(), 1e300);
+      std::vector<types::global_dof_index> best_dof(stations.size());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->material_id() == geometry::material::support)
+          for (const auto v : cell->vertex_indices())
+            for (unsigned int i = 0; i < stations.size(); ++i)
+              {
+                const double d = cell->vertex(v).distance(stations[i]);
+                if (d < best[i])
+                  {
+                    best[i]     = d;
+                    best_dof[i] = cell->vertex_dof_index(v, 1);
+                  }
+              }
+      double worst = 0;
+      for (unsigned int i = 0; i < stations.size(); ++i)
+        {
+          worst = std::max(worst, best[i]);
+          if (locally_owned_dofs.is_element(best_dof[i]))
+            stiffness_rest.add(best_dof[i], best_dof[i], s.stiffness);
+        }
+      stiffness_rest.compress(VectorOperation::add);
+      pcout << "Springs: " << stations.size() << " x " << s.stiffness
+            << " N/m in the sliding direction";
+      if (worst > 1e-9)
+        pcout << " (WARNING: a station lies " << worst
+              << " m from the nearest node; choose mesh counts that put "
+                 "nodes at the stations)";
+      pcout << std::endl;
+    }
+
+    namespace
+    {
+      // result = first + sum factor_i * matrix_i (all on one sparsity pattern)
+      void
+      combine(const PETScMatrix &first,
+              const std::vector<std::pair<double, const PETScMatrix *>> &rest,
+              PETScMatrix &result)
+      {
+        result.reinit(first);
+        result.copy_from(first);
+        for (const auto &[factor, m] : rest)
+          if (factor != 0.)
+            result.add(factor, *m);
+      }
+    } // namespace
+
+    void
+    MatrixParts::stiffness(const double E_pad,
+                           const double mu,
+                           PETScMatrix &K) const
+    {
+      combine(*rest, {{E_pad / E_ref, pad}, {1., normal}, {mu, friction}}, K);
+    }
+
+    void
+    MatrixParts::symmetric_stiffness(const double E_pad, PETScMatrix &K) const
+    {
+      combine(*rest, {{E_pad / E_ref, pad}, {1., normal}}, K);
+    }
+
+    void
+    MatrixParts::damping(const double E_pad,
+                         const double alpha,
+                         const double beta,
+                         PETScMatrix &C) const
+    {
+      combine(*mass, {}, C);
+      C *= alpha;
+      C.add(beta, *rest);
+      C.add(beta * E_pad / E_ref, *pad);
+    }
+  } // namespace physics
+} // namespace squeal
