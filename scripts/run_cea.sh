@@ -7,4 +7,4 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$here/scripts/setup.sh"
 cd "$here"
 build/squeal "$@" prm/tribobrake_cea.prm
-python3 scripts/plot_cea.py output/tribobrake_cea
+/usr/bin/python3 scripts/plot_cea.py output/tribobrake_cea

@@ -65,9 +65,23 @@ main(int argc, char **argv)
                       << prm.output.directory << ")" << std::endl;
           return 0;
         }
-      squeal::cea::ComplexEigenvalueAnalysis analysis(prm, handler,
-                                                      MPI_COMM_WORLD);
-      analysis.run();
+      // Catch inside the analysis' scope so that its TimerOutput is not
+      // destroyed while an exception is in flight.
+      std::string failure;
+      {
+        squeal::cea::ComplexEigenvalueAnalysis analysis(prm, handler,
+                                                        MPI_COMM_WORLD);
+        try
+          {
+            analysis.run();
+          }
+        catch (const std::exception &e)
+          {
+            failure = e.what();
+          }
+      }
+      if (!failure.empty())
+        throw std::runtime_error(failure);
     }
   catch (const std::exception &e)
     {

@@ -531,8 +531,13 @@ namespace squeal
           // deal.II's own text names the line and the entry; keep only it.
           std::ostringstream info;
           e.print_info(info);
+          // One line: fold deal.II's indented layout.
+          std::istringstream words(info.str());
+          std::string        folded, w;
+          while (words >> w)
+            folded += (folded.empty() ? "" : " ") + w;
           throw std::runtime_error("in parameter file '" + filename + "': " +
-                                   Utilities::trim(info.str()));
+                                   folded);
         }
       try
         {

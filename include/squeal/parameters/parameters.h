@@ -77,7 +77,7 @@ namespace squeal
       Material support{210e9, 0.3, 7800.};
       /// `updated`: the calibrated support density; `steel`: 7800 kg/m^3.
       std::string support_density_model = "updated";
-      double      support_updated_density = 7800.; ///< kg/m^3, calibrated value
+      double      support_updated_density = 76500.; ///< kg/m^3, calibrated value
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };

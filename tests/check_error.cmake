@@ -1,0 +1,29 @@
+# Runs squeal on bad input and checks that it fails with a clear message.
+#   cmake -DSQUEAL=exe -DINPUT=file.prm -DEXPECT="text" [-DEXISTING=dir] -P check_error.cmake
+# With EXISTING, the output directory EXISTING is created first with a marker
+# file, the run must refuse to replace it, and the marker must survive.
+if(EXISTING)
+  file(REMOVE_RECURSE "${EXISTING}")
+  file(WRITE "${EXISTING}/earlier_result.txt" "keep me\n")
+  file(WRITE "${EXISTING}.prm"
+    "subsection Output\n  set Directory = ${EXISTING}\nend\n")
+  set(INPUT "${EXISTING}.prm")
+endif()
+execute_process(COMMAND "${SQUEAL}" "${INPUT}"
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("exit code ${rc}; stderr:\n${err}")
+if(rc EQUAL 0)
+  message(FATAL_ERROR "squeal accepted bad input ${INPUT}")
+endif()
+string(FIND "${err}" "${EXPECT}" where)
+if(where EQUAL -1)
+  message(FATAL_ERROR "the error message does not contain '${EXPECT}'")
+endif()
+string(REGEX MATCHALL "\n" lines "${err}")
+list(LENGTH lines n_lines)
+if(n_lines GREATER 6 OR err MATCHES "Stacktrace|PETSC ERROR")
+  message(FATAL_ERROR "the error is not one clear message")
+endif()
+if(EXISTING AND NOT EXISTS "${EXISTING}/earlier_result.txt")
+  message(FATAL_ERROR "an earlier result was destroyed")
+endif()
