@@ -136,19 +136,25 @@ namespace squeal
       for (unsigned int k = 0; k < n_parts; ++k)
         W[k] = multiply(*parts[k], B);
 
-      // M-orthonormalisation through the Gram matrix B^T M B.
+      // M-orthonormalisation through the Gram matrix B^T M B, after scaling
+      // every vector to unit M-norm (the enrichment vectors are far smaller
+      // than the modes and must not be mistaken for dependent directions).
       Eigen::MatrixXd gram = B.transpose() * W[mass];
       sum_over_ranks(gram, comm);
       gram = (gram + gram.transpose()).eval() / 2;
+      Eigen::VectorXd scale(B.cols());
+      for (int j = 0; j < B.cols(); ++j)
+        scale[j] = gram(j, j) > 0 ? 1. / std::sqrt(gram(j, j)) : 0.;
+      gram = scale.asDiagonal() * gram * scale.asDiagonal();
       Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(gram);
       const double largest = es.eigenvalues().maxCoeff();
       std::vector<int> keep;
       for (int i = 0; i < es.eigenvalues().size(); ++i)
-        if (es.eigenvalues()[i] > 1e-8 * largest)
+        if (es.eigenvalues()[i] > 1e-10 * largest)
           keep.push_back(i);
       Eigen::MatrixXd T(B.cols(), keep.size());
       for (unsigned int j = 0; j < keep.size(); ++j)
-        T.col(j) = es.eigenvectors().col(keep[j]) /
+        T.col(j) = scale.asDiagonal() * es.eigenvectors().col(keep[j]) /
                    std::sqrt(es.eigenvalues()[keep[j]]);
       V = B * T;
       for (auto &w : W)
