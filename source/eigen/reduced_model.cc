@@ -109,25 +109,63 @@ namespace squeal
       for (unsigned int j = 0; j < columns.size(); ++j)
         B.col(j) = columns[j];
       columns.clear();
-      project(model, B);
+      project(model, B, true);
       pcout << "  reduced basis: " << B.cols() << " vectors, " << V.cols()
             << " M-orthonormal directions kept" << std::endl;
     }
 
     void
     ReducedModel::build_from_vectors(const physics::MatrixParts &    model,
-                                     const std::vector<PETScVector> &vectors)
+                                     const std::vector<PETScVector> &vectors,
+                                     const bool with_residuals)
     {
       comm  = model.mass->get_mpi_communicator();
       owned = model.mass->locally_owned_range_indices();
       Eigen::MatrixXd B(owned.n_elements(), vectors.size());
       for (unsigned int j = 0; j < vectors.size(); ++j)
         B.col(j) = local_part(vectors[j], owned);
-      project(model, B);
+      project(model, B, with_residuals);
     }
 
     void
-    ReducedModel::project(const physics::MatrixParts &model, Eigen::MatrixXd &B)
+    ReducedModel::enrich(const physics::MatrixParts &    model,
+                         const std::vector<PETScVector> &vectors,
+                         const bool                      with_residuals)
+    {
+      Eigen::MatrixXd N(owned.n_elements(), vectors.size());
+      for (unsigned int j = 0; j < vectors.size(); ++j)
+        N.col(j) = local_part(vectors[j], owned);
+      const auto m_norms = [&](Eigen::MatrixXd &X) {
+        Eigen::MatrixXd  MX = multiply(*model.mass, X);
+        Eigen::VectorXd  n2 = (X.array() * MX.array()).colwise().sum();
+        Eigen::MatrixXd  n2m = n2;
+        sum_over_ranks(n2m, comm);
+        return Eigen::VectorXd(n2m.cwiseMax(0.).cwiseSqrt());
+      };
+      const Eigen::VectorXd before = m_norms(N);
+      for (unsigned int pass = 0; pass < 2; ++pass)
+        {
+          Eigen::MatrixXd MN = multiply(*model.mass, N);
+          Eigen::MatrixXd coefficients = V.transpose() * MN;
+          sum_over_ranks(coefficients, comm);
+          N -= V * coefficients;
+        }
+      const Eigen::VectorXd after = m_norms(N);
+      std::vector<int> keep;
+      for (int j = 0; j < N.cols(); ++j)
+        if (after[j] > 1e-10 * before[j])
+          keep.push_back(j);
+      Eigen::MatrixXd B(owned.n_elements(), V.cols() + keep.size());
+      B.leftCols(V.cols()) = V;
+      for (unsigned int j = 0; j < keep.size(); ++j)
+        B.col(V.cols() + j) = N.col(keep[j]) / after[keep[j]];
+      project(model, B, with_residuals);
+    }
+
+    void
+    ReducedModel::project(const physics::MatrixParts &model,
+                          Eigen::MatrixXd &           B,
+                          const bool                  with_residuals)
     {
       E_ref = model.E_ref;
       const std::array<const PETScMatrix *, n_parts> parts = {
@@ -164,7 +202,7 @@ namespace squeal
         {
           Ar[k] = V.transpose() * W[k];
           sum_over_ranks(Ar[k], comm);
-          for (unsigned int l = k; l < n_parts; ++l)
+          for (unsigned int l = k; l < n_parts && with_residuals; ++l)
             {
               G[k][l] = W[k].transpose() * W[l];
               sum_over_ranks(G[k][l], comm);
@@ -172,6 +210,39 @@ namespace squeal
         }
       Mr = Ar[mass];
     }
+
+    namespace
+    {
+      // The relative residual of (lambda, x = re + i im) and its real and
+      // imaginary parts r = (lambda^2 M + lambda C + K) x.
+      double
+      residual(const PETScMatrix &M, const PETScMatrix &C, const PETScMatrix &K,
+               const std::complex<double> lambda, const PETScVector &re,
+               const PETScVector &im, PETScVector &r_re, PETScVector &r_im)
+      {
+        const double a = lambda.real(), b = lambda.imag();
+        const std::complex<double> l2 = lambda * lambda;
+        PETScVector Mr(re), Mi(re), Cr(re), Ci(re), Kr(re), Ki(re);
+        M.vmult(Mr, re);
+        M.vmult(Mi, im);
+        C.vmult(Cr, re);
+        C.vmult(Ci, im);
+        K.vmult(Kr, re);
+        K.vmult(Ki, im);
+        r_re = Kr;
+        r_re.add(l2.real(), Mr, -l2.imag(), Mi);
+        r_re.add(a, Cr, -b, Ci);
+        r_im = Ki;
+        r_im.add(l2.real(), Mi, l2.imag(), Mr);
+        r_im.add(a, Ci, b, Cr);
+        const auto norm = [](const PETScVector &x, const PETScVector &y) {
+          return std::sqrt(x.norm_sqr() + y.norm_sqr());
+        };
+        return norm(r_re, r_im) / (std::norm(lambda) * norm(Mr, Mi) +
+                                   std::abs(lambda) * norm(Cr, Ci) +
+                                   norm(Kr, Ki));
+      }
+    } // namespace
 
     std::vector<EigenPair>
     solve_full(const physics::MatrixParts &model,
@@ -182,11 +253,12 @@ namespace squeal
                const BandOptions &         band,
                ConditionalOStream &        pcout)
     {
-      PETScMatrix K;
+      PETScMatrix K, C;
       model.stiffness(E_pad, mu, K);
-      const auto modes = solve_undamped(*model.mass, K, band, 1.5,
-                                        mu == 0. /* K symmetric */,
-                                        pcout);
+      model.damping(E_pad, alpha, beta, C);
+      const auto modes =
+        solve_undamped(*model.mass, K, band, 1.5, mu == 0. /* symmetric */,
+                       pcout);
       std::vector<PETScVector> vectors;
       for (const auto &m : modes)
         {
@@ -194,19 +266,61 @@ namespace squeal
           if (m.omega2.imag() != 0.)
             vectors.push_back(m.im);
         }
-      ReducedModel projected;
-      projected.build_from_vectors(model, vectors);
-      std::vector<EigenPair> pairs;
-      for (const auto &r :
-           projected.solve(E_pad, mu, alpha, beta, band.f_min, band.f_max))
+
+      const double tolerance = 1e-9;
+      std::unique_ptr<DirectSolver> preconditioner;
+      PETScMatrix                   P;
+      std::vector<EigenPair>        pairs;
+      ReducedModel                  projected;
+      projected.build_from_vectors(model, vectors, false);
+      for (unsigned int round = 0;; ++round)
         {
-          EigenPair p;
-          p.lambda   = r.lambda;
-          p.residual = r.residual;
-          projected.expand(r.q, p.re, p.im);
-          pairs.push_back(std::move(p));
+          pairs.clear();
+          double worst = 0;
+          std::vector<PETScVector> corrections;
+          for (const auto &r :
+               projected.solve(E_pad, mu, alpha, beta, band.f_min, band.f_max))
+            {
+              EigenPair p;
+              p.lambda = r.lambda;
+              projected.expand(r.q, p.re, p.im);
+              PETScVector r_re(p.re), r_im(p.re);
+              p.residual = residual(*model.mass, C, K, p.lambda, p.re, p.im,
+                                    r_re, r_im);
+              worst = std::max(worst, p.residual);
+              if (p.residual > tolerance)
+                {
+                  corrections.push_back(std::move(r_re));
+                  corrections.push_back(std::move(r_im));
+                }
+              pairs.push_back(std::move(p));
+            }
+          if (corrections.empty() || round == 6)
+            {
+              pcout << "  full solver: " << pairs.size()
+                    << " modes in the band, largest relative residual "
+                    << worst << " after " << round << " refinement rounds"
+                    << std::endl;
+              return pairs;
+            }
+          if (!preconditioner)
+            {
+              // P(tau) = K + tau C + tau^2 M, tau = -2 pi f_t (regular).
+              const double tau = -2. * numbers::PI * band.target_frequency;
+              P.reinit(K);
+              P.copy_from(K);
+              P.add(tau, C);
+              P.add(tau * tau, *model.mass);
+              preconditioner = std::make_unique<DirectSolver>(P);
+            }
+          for (auto &r : corrections)
+            {
+              PETScVector t(r);
+              preconditioner->solve(r, t);
+              r = t;
+            }
+          projected.enrich(model, corrections, false);
         }
-      return pairs;
     }
 
     double
@@ -266,6 +380,12 @@ namespace squeal
                   for (int i = 0; i < r; ++i)
                     q[i] = {vr[i + j * n], vr[i + (j + 1) * n]};
                   q.normalize();
+                  if (G[0][0].size() == 0)
+                    {
+                      pairs.push_back({lambda, q, -1.});
+                      ++j;
+                      continue;
+                    }
                   // h_kl = q^H G_kl q, h_lk = conj(h_kl) for real G.
                   std::array<std::array<std::complex<double>, n_parts>, n_parts> h;
                   for (unsigned int k = 0; k < n_parts; ++k)

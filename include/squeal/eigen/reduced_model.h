@@ -38,7 +38,7 @@ namespace squeal
     {
       std::complex<double> lambda;
       Eigen::VectorXcd     q;        ///< length r, reduced coordinates
-      double               residual; ///< relative residual on the full model
+      double residual; ///< relative residual on the full model (-1: not computed)
     };
 
     /** The projected model of a StructuralModel. */
@@ -64,8 +64,19 @@ namespace squeal
        * dependent ones are dropped) instead of building a basis.
        */
       void
-      build_from_vectors(const physics::MatrixParts &       model,
-                         const std::vector<PETScVector> &vectors);
+      build_from_vectors(const physics::MatrixParts &    model,
+                         const std::vector<PETScVector> &vectors,
+                         const bool                      with_residuals = true);
+
+      /**
+       * Adds to the basis the parts of @p vectors M-orthogonal to it (two
+       * Gram-Schmidt passes; vectors lying in the basis to 1e-10 relative
+       * are dropped) and re-projects.
+       */
+      void
+      enrich(const physics::MatrixParts &    model,
+             const std::vector<PETScVector> &vectors,
+             const bool                      with_residuals = true);
 
       /**
        * Eigenpairs with Im lambda > 0 and frequency in [f_min, f_max] at pad
@@ -100,7 +111,9 @@ namespace squeal
 
     private:
       void
-      project(const physics::MatrixParts &model, Eigen::MatrixXd &B);
+      project(const physics::MatrixParts &model,
+              Eigen::MatrixXd &           B,
+              const bool                  with_residuals);
 
       enum Part
       {
@@ -124,10 +137,13 @@ namespace squeal
     /**
      * The full solver: every eigenpair of (lambda^2 M + lambda C + K) phi = 0
      * with frequency in [f_min, f_max] at (E_pad [Pa], mu), Rayleigh alpha
-     * [1/s], beta [s]: the undamped friction-coupled modes up to 1.5 f_max by
-     * solve_undamped (GNHEP), then the damped problem on their span, exact
-     * for proportional damping; each pair carries its residual on the full
-     * model. Sorted by frequency.
+     * [1/s], beta [s]. The undamped friction-coupled modes up to 1.5 f_max
+     * (solve_undamped, GNHEP) span a first subspace on which the damped
+     * problem is solved; then, as in a block Davidson method, the residuals
+     * of the eigenpairs, preconditioned by the real factorisation of
+     * P(tau) = tau^2 M + tau C + K, are added to the subspace until every
+     * relative residual on the full model is below 1e-9 (at most 6 rounds).
+     * Each pair carries its residual. Sorted by frequency.
      * @throws std::runtime_error if an eigensolve fails.
      */
     std::vector<EigenPair>
