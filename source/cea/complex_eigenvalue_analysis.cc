@@ -10,6 +10,7 @@
 
 #include <squeal/cea/complex_eigenvalue_analysis.h>
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -375,6 +376,27 @@ namespace squeal
             if (what == "all" || m.point == 0 || unstable_peak)
               chosen.emplace_back(m.point, m.mode);
           }
+      // Kinetic-energy fraction of each body in each written mode, to name
+      // modes (disc, pad, support) and to calibrate the support.
+      std::array<physics::PETScVector, 3> body_mask;
+      for (auto &m : body_mask)
+        m.reinit(model.locally_owned_dofs, comm);
+      {
+        std::vector<types::global_dof_index> dofs(model.fe.n_dofs_per_cell());
+        for (const auto &cell : model.dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(dofs);
+              for (const auto i : dofs)
+                body_mask[cell->material_id()](i) = 1.;
+            }
+        for (auto &m : body_mask)
+          m.compress(VectorOperation::insert);
+      }
+      std::ostringstream participation;
+      participation << "point,mode,freq_Hz,re_per_s,disc,pad,support\n"
+                    << std::setprecision(8);
+
       std::vector<std::pair<double, std::string>> records;
       for (const auto &[p, k] : chosen)
         {
@@ -389,6 +411,25 @@ namespace squeal
             }
           else
             continue;
+          {
+            physics::PETScVector Mx(re), weighted(re);
+            std::array<double, 3> e{};
+            for (const auto *x : {&re, &im})
+              {
+                model.mass.vmult(Mx, *x);
+                for (unsigned int b = 0; b < 3; ++b)
+                  {
+                    weighted = *x;
+                    weighted.scale(body_mask[b]);
+                    e[b] += weighted * Mx;
+                  }
+              }
+            const double total = e[0] + e[1] + e[2];
+            participation << p << ',' << k << ','
+                          << pt.lambda[k].imag() / (2 * M_PI) << ','
+                          << pt.lambda[k].real() << ',' << e[0] / total << ','
+                          << e[1] / total << ',' << e[2] / total << '\n';
+          }
           std::ostringstream name;
           name << "mode_p" << p << "_m" << k << "_" << std::fixed
                << std::setprecision(1) << pt.lambda[k].imag() / (2 * M_PI)
@@ -400,6 +441,8 @@ namespace squeal
         {
           std::ofstream pvd(work_dir + "/modes.pvd");
           DataOutBase::write_pvd_record(pvd, records);
+          std::ofstream(work_dir + "/mode_participation.csv")
+            << participation.str();
         }
       MPI_Barrier(comm);
       if (root)
