@@ -1,0 +1,210 @@
+// The friction interface of the CEA (contact/friction_coupling.h) on two
+// stacked unit blocks: a "disc" block below z = 0 and a "pad" block above.
+// 1. Matching meshes, degree 1, nodal quadrature: K_n and K_t equal the
+//    thesis' node-pair elements (eq. 3-1, F_z = k_n (z_d - z_p),
+//    F_y^pad = mu k_n (z_d - z_p), F_y^disc = -mu k_n (z_d - z_p)) with
+//    k_n = k A_node, A_node the node's tributary area, when the sliding
+//    direction is -y (the thesis' sign convention), to 1e-12.
+// 2. Non-matching meshes (pad 2 x 2, disc 3 x 3 cells; degree 1 and 2),
+//    mortar quadrature: a unit normal gap gives total forces k A on each
+//    side, and a gap varying as x gives pad forces whose moment
+//    sum_i x_i f_i equals k int_Gamma x^2 dA = k / 3, to 1e-12 (a nodal
+//    trapezoidal rule misses it; Simpson's, the nodal rule of degree 2, not).
+
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/lac/sparsity_tools.h>
+
+#include <squeal/contact/friction_coupling.h>
+#include <squeal/geometry/tribobrake_mesh.h>
+
+#include "test_tools.h"
+
+using namespace dealii;
+using namespace squeal;
+
+namespace
+{
+  // Two blocks sharing the plane z = 0 but no vertices.
+  void
+  make_blocks(const unsigned int n_disc, const unsigned int n_pad,
+              Triangulation<3> &tria)
+  {
+    std::vector<Point<3>>    vertices;
+    std::vector<CellData<3>> cells;
+    for (const auto &[n, z0, material] :
+         {std::tuple{n_disc, -1., geometry::material::disc},
+          std::tuple{n_pad, 0., geometry::material::pad}})
+      {
+        Triangulation<3> block;
+        GridGenerator::subdivided_hyper_rectangle(block, {n, n, 1u},
+                                                  Point<3>(0, 0, z0),
+                                                  Point<3>(1, 1, z0 + 1));
+        const unsigned int offset = vertices.size();
+        vertices.insert(vertices.end(), block.get_vertices().begin(),
+                        block.get_vertices().end());
+        for (const auto &cell : block.active_cell_iterators())
+          {
+            CellData<3> c;
+            for (const auto v : cell->vertex_indices())
+              c.vertices[v] = offset + cell->vertex_index(v);
+            c.material_id = material;
+            cells.push_back(c);
+          }
+      }
+    tria.create_triangulation(vertices, cells, SubCellData());
+    for (const auto &cell : tria.active_cell_iterators())
+      for (const auto f : cell->face_indices())
+        if (cell->face(f)->at_boundary() &&
+            std::abs(cell->face(f)->center()[2]) < 1e-12)
+          cell->face(f)->set_boundary_id(
+            cell->material_id() == geometry::material::disc ?
+              geometry::boundary::disc_contact :
+              geometry::boundary::pad_contact);
+  }
+
+  struct Interface
+  {
+    Triangulation<3>                 tria;
+    FESystem<3>                      fe;
+    MappingQ<3>                      mapping;
+    DoFHandler<3>                    dofs;
+    AffineConstraints<double>        constraints;
+    PETScWrappers::MPI::SparseMatrix K_n, K_t;
+    std::map<types::global_dof_index, Point<3>> where;
+
+    Interface(const unsigned int n_disc, const unsigned int n_pad,
+              const unsigned int degree, const std::string &rule,
+              const Tensor<1, 3> &tangent, const double k)
+      : fe(FE_Q<3>(degree), 3)
+      , mapping(degree)
+    {
+      make_blocks(n_disc, n_pad, tria);
+      dofs.reinit(tria);
+      dofs.distribute_dofs(fe);
+      constraints.close();
+      const auto points = contact::interface_quadrature(
+        dofs, mapping, rule, rule == "nodal" ? degree + 1 : degree + 2);
+      DynamicSparsityPattern dsp(dofs.n_dofs());
+      DoFTools::make_sparsity_pattern(dofs, dsp);
+      contact::add_interface_sparsity(points, constraints, dsp);
+      const IndexSet all = complete_index_set(dofs.n_dofs());
+      K_n.reinit(all, all, dsp, MPI_COMM_SELF);
+      K_t.reinit(all, all, dsp, MPI_COMM_SELF);
+      contact::assemble_interface(points, constraints, k, tangent, K_n, K_t);
+      K_n.compress(VectorOperation::add);
+      K_t.compress(VectorOperation::add);
+      DoFTools::map_dofs_to_support_points(mapping, dofs, where);
+    }
+
+    // z (component c) dof of the given body at point p, or invalid
+    types::global_dof_index
+    dof_at(const Point<3> &p, const unsigned int c, const bool disc) const
+    {
+      for (const auto &cell : dofs.active_cell_iterators())
+        if ((cell->material_id() == geometry::material::disc) == disc)
+          {
+            std::vector<types::global_dof_index> d(fe.n_dofs_per_cell());
+            cell->get_dof_indices(d);
+            for (unsigned int i = 0; i < d.size(); ++i)
+              if (fe.system_to_component_index(i).first == c &&
+                  where.at(d[i]).distance(p) < 1e-12)
+                return d[i];
+          }
+      return numbers::invalid_dof_index;
+    }
+
+  };
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  using test_tools::check;
+  const double k = 2.5e12;
+
+  {
+    // 1. matching 2 x 2 faces, degree 1, nodal rule, sliding direction -y
+    Tensor<1, 3> t;
+    t[1] = -1;
+    Interface    I(2, 2, 1, "nodal", t, k);
+    // the thesis' node-pair matrices, independently
+    FullMatrix<double> expected_n(I.dofs.n_dofs(), I.dofs.n_dofs()),
+      expected_t(I.dofs.n_dofs(), I.dofs.n_dofs());
+    const double h = 0.5;
+    for (unsigned int i = 0; i <= 2; ++i)
+      for (unsigned int j = 0; j <= 2; ++j)
+        {
+          const Point<3> p(i * h, j * h, 0.);
+          const double   n_adjacent = (i == 1 ? 2 : 1) * (j == 1 ? 2 : 1);
+          const double   kn         = k * n_adjacent * h * h / 4;
+          const auto zd = I.dof_at(p, 2, true), zp = I.dof_at(p, 2, false);
+          const auto yd = I.dof_at(p, 1, true), yp = I.dof_at(p, 1, false);
+          // rows: internal force of F_z^disc = k_n (z_d - z_p) etc.
+          expected_n(zd, zd) += kn;
+          expected_n(zd, zp) -= kn;
+          expected_n(zp, zd) -= kn;
+          expected_n(zp, zp) += kn;
+          expected_t(yd, zd) -= kn; // F_y^disc = -mu k_n (z_d - z_p)
+          expected_t(yd, zp) += kn;
+          expected_t(yp, zd) += kn; // F_y^pad = mu k_n (z_d - z_p)
+          expected_t(yp, zp) -= kn;
+        }
+    double dn = 0, dt = 0;
+    for (unsigned int i = 0; i < I.dofs.n_dofs(); ++i)
+      for (unsigned int j = 0; j < I.dofs.n_dofs(); ++j)
+        {
+          dn = std::max(dn, std::abs(I.K_n.el(i, j) - expected_n(i, j)));
+          dt = std::max(dt, std::abs(I.K_t.el(i, j) - expected_t(i, j)));
+        }
+    check("matching, nodal: K_n equals the node-pair elements", dn, 0, 1e-12, k);
+    check("matching, nodal: K_t equals the thesis' friction rows", dt, 0, 1e-12, k);
+  }
+
+  for (const unsigned int degree : {1u, 2u})
+    for (const std::string rule : {"mortar", "nodal"})
+      {
+        Tensor<1, 3> t;
+        t[1] = 1;
+        Interface I(3, 2, degree, rule, t, k);
+        PETScWrappers::MPI::Vector u(complete_index_set(I.dofs.n_dofs()),
+                                     MPI_COMM_SELF),
+          f(u);
+        double total_pad = 0, total_disc = 0, moment = 0;
+        // unit gap: disc z = 1
+        for (const auto &[i, p] : I.where)
+          if (std::abs(p[2]) < 1e-12 && I.dof_at(p, 2, true) == i)
+            u(i) = 1.;
+        u.compress(VectorOperation::insert);
+        I.K_n.vmult(f, u);
+        for (const auto &[i, p] : I.where)
+          if (std::abs(p[2]) < 1e-12 && I.dof_at(p, 2, false) == i)
+            total_pad += f(i);
+          else if (std::abs(p[2]) < 1e-12 && I.dof_at(p, 2, true) == i)
+            total_disc += f(i);
+        // gap varying as x
+        u = 0;
+        for (const auto &[i, p] : I.where)
+          if (std::abs(p[2]) < 1e-12 && I.dof_at(p, 2, true) == i)
+            u(i) = p[0];
+        u.compress(VectorOperation::insert);
+        I.K_n.vmult(f, u);
+        for (const auto &[i, p] : I.where)
+          if (std::abs(p[2]) < 1e-12 && I.dof_at(p, 2, false) == i)
+            moment += p[0] * f(i);
+        const std::string tag = "non-matching, degree " +
+                                std::to_string(degree) + ", " + rule + ": ";
+        check(tag + "unit gap, total pad force -k A", total_pad, -k, 1e-12);
+        check(tag + "unit gap, total disc force k A", total_disc, k, 1e-12);
+        if (rule == "mortar")
+          check(tag + "gap x, pad moment -k/3", moment, -k / 3, 1e-12);
+        else if (degree == 1) // Simpson (degree 2) is exact for x^2
+          check(tag + "gap x, pad moment misses -k/3 (nodal rule is not exact)",
+                std::abs(moment + k / 3) > 1e-6 * k / 3, 1, 0);
+      }
+  return test_tools::finish();
+}
