@@ -111,8 +111,9 @@ namespace squeal
                 p.full = eigen::solve_full(model.parts(), E, mu,
                                            prm.damping.alpha, prm.damping.beta,
                                            band, pcout);
+                // 1.5 f_max holds about 1.7 times the modes of the band
                 band.initial_nev = std::max<unsigned int>(
-                  40, 1.5 * p.full.size() + 20);
+                  40, 1.9 * p.full.size() + 10);
                 for (const auto &r : p.full)
                   {
                     p.lambda.push_back(r.lambda);

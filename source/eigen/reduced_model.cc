@@ -80,13 +80,16 @@ namespace squeal
       comm  = model.mass->get_mpi_communicator();
       owned = model.mass->locally_owned_range_indices();
       std::vector<Eigen::VectorXd> columns;
+      BandOptions                  sample_band = band;
       for (const double s : sample_moduli)
         {
           PETScMatrix K;
           model.symmetric_stiffness(s, K);
           pcout << "  reduced basis: sample E_pad = " << s << " Pa" << std::endl;
-          const auto modes =
-            solve_undamped(*model.mass, K, band, band_factor, true, pcout);
+          const auto modes = solve_undamped(*model.mass, K, sample_band,
+                                            band_factor, true, pcout);
+          // the next sample has about as many modes: ask for them at once
+          sample_band.initial_nev = modes.size() + modes.size() / 5 + 10;
           std::unique_ptr<DirectSolver> solver;
           if (enrichment)
             solver = std::make_unique<DirectSolver>(K);
@@ -136,30 +139,73 @@ namespace squeal
       for (unsigned int j = 0; j < vectors.size(); ++j)
         N.col(j) = local_part(vectors[j], owned);
       const auto m_norms = [&](Eigen::MatrixXd &X) {
-        Eigen::MatrixXd  MX = multiply(*model.mass, X);
-        Eigen::VectorXd  n2 = (X.array() * MX.array()).colwise().sum();
-        Eigen::MatrixXd  n2m = n2;
-        sum_over_ranks(n2m, comm);
-        return Eigen::VectorXd(n2m.cwiseMax(0.).cwiseSqrt());
+        Eigen::MatrixXd MX = multiply(*model.mass, X);
+        Eigen::MatrixXd n2 = (X.array() * MX.array()).colwise().sum();
+        sum_over_ranks(n2, comm);
+        return Eigen::VectorXd(n2.transpose().cwiseMax(0.).cwiseSqrt());
       };
       const Eigen::VectorXd before = m_norms(N);
       for (unsigned int pass = 0; pass < 2; ++pass)
         {
-          Eigen::MatrixXd MN = multiply(*model.mass, N);
+          Eigen::MatrixXd MN           = multiply(*model.mass, N);
           Eigen::MatrixXd coefficients = V.transpose() * MN;
           sum_over_ranks(coefficients, comm);
           N -= V * coefficients;
         }
       const Eigen::VectorXd after = m_norms(N);
-      std::vector<int> keep;
+      std::vector<int>      keep;
       for (int j = 0; j < N.cols(); ++j)
         if (after[j] > 1e-10 * before[j])
           keep.push_back(j);
-      Eigen::MatrixXd B(owned.n_elements(), V.cols() + keep.size());
-      B.leftCols(V.cols()) = V;
+      Eigen::MatrixXd B(owned.n_elements(), keep.size());
       for (unsigned int j = 0; j < keep.size(); ++j)
-        B.col(V.cols() + j) = N.col(keep[j]) / after[keep[j]];
-      project(model, B, with_residuals);
+        B.col(j) = N.col(keep[j]) / after[keep[j]];
+      if (with_residuals)
+        {
+          Eigen::MatrixXd all(owned.n_elements(), V.cols() + B.cols());
+          all << V, B;
+          project(model, all, true);
+          return;
+        }
+      // Orthonormalise the new block among itself, then extend every
+      // projected part by the new rows and columns only.
+      Eigen::MatrixXd MB   = multiply(*model.mass, B);
+      Eigen::MatrixXd gram = B.transpose() * MB;
+      sum_over_ranks(gram, comm);
+      gram = (gram + gram.transpose()).eval() / 2;
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(gram);
+      std::vector<int> directions;
+      for (int i = 0; i < es.eigenvalues().size(); ++i)
+        if (es.eigenvalues()[i] > 1e-10 * es.eigenvalues().maxCoeff())
+          directions.push_back(i);
+      Eigen::MatrixXd T(B.cols(), directions.size());
+      for (unsigned int j = 0; j < directions.size(); ++j)
+        T.col(j) = es.eigenvectors().col(directions[j]) /
+                   std::sqrt(es.eigenvalues()[directions[j]]);
+      Eigen::MatrixXd Nn = B * T;
+
+      const std::array<const PETScMatrix *, n_parts> parts = {
+        {model.mass, model.rest, model.pad, model.normal, model.friction}};
+      const int r = V.cols(), q = Nn.cols();
+      for (unsigned int k = 0; k < n_parts; ++k)
+        {
+          Eigen::MatrixXd WN = multiply(*parts[k], Nn);
+          Eigen::MatrixXd top = V.transpose() * WN, left = Nn.transpose() * W[k],
+                          corner = Nn.transpose() * WN;
+          sum_over_ranks(top, comm);
+          sum_over_ranks(left, comm);
+          sum_over_ranks(corner, comm);
+          Eigen::MatrixXd A(r + q, r + q);
+          A << Ar[k], top, left, corner;
+          Ar[k] = A;
+          Eigen::MatrixXd Wk(W[k].rows(), r + q);
+          Wk << W[k], WN;
+          W[k] = Wk;
+        }
+      Eigen::MatrixXd Vn(V.rows(), r + q);
+      Vn << V, Nn;
+      V  = Vn;
+      Mr = Ar[mass];
     }
 
     void
@@ -170,7 +216,6 @@ namespace squeal
       E_ref = model.E_ref;
       const std::array<const PETScMatrix *, n_parts> parts = {
         {model.mass, model.rest, model.pad, model.normal, model.friction}};
-      std::array<Eigen::MatrixXd, n_parts> W;
       for (unsigned int k = 0; k < n_parts; ++k)
         W[k] = multiply(*parts[k], B);
 
@@ -267,7 +312,7 @@ namespace squeal
             vectors.push_back(m.im);
         }
 
-      const double tolerance = 1e-9;
+      const double tolerance = 1e-8;
       std::unique_ptr<DirectSolver> preconditioner;
       PETScMatrix                   P;
       std::vector<EigenPair>        pairs;

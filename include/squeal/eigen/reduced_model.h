@@ -128,6 +128,7 @@ namespace squeal
       Eigen::MatrixXd                      V; ///< n_local x r, M-orthonormal
       Eigen::MatrixXd                      Mr;
       std::array<Eigen::MatrixXd, n_parts> Ar; ///< V^T A_k V
+      std::array<Eigen::MatrixXd, n_parts> W;  ///< A_k V, local rows
       std::array<std::array<Eigen::MatrixXd, n_parts>, n_parts>
                                       G; ///< (A_k V)^T (A_l V)
       dealii::IndexSet                owned;
@@ -142,7 +143,7 @@ namespace squeal
      * problem is solved; then, as in a block Davidson method, the residuals
      * of the eigenpairs, preconditioned by the real factorisation of
      * P(tau) = tau^2 M + tau C + K, are added to the subspace until every
-     * relative residual on the full model is below 1e-9 (at most 6 rounds).
+     * relative residual on the full model is below 1e-8 (at most 6 rounds).
      * Each pair carries its residual. Sorted by frequency.
      * @throws std::runtime_error if an eigensolve fails.
      */
