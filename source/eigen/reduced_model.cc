@@ -59,6 +59,31 @@ namespace squeal
         return result;
       }
 
+      // T such that B T is M-orthonormal, from the Gram matrix B^T M B:
+      // every vector is first scaled to unit M-norm (enrichment vectors are
+      // far smaller than modes and must not be taken for dependent ones),
+      // then directions with relative M-norm^2 below 1e-10 are dropped.
+      Eigen::MatrixXd
+      orthonormalising_transform(Eigen::MatrixXd gram)
+      {
+        gram = (gram + gram.transpose()).eval() / 2;
+        Eigen::VectorXd scale(gram.cols());
+        for (int j = 0; j < gram.cols(); ++j)
+          scale[j] = gram(j, j) > 0 ? 1. / std::sqrt(gram(j, j)) : 0.;
+        gram = scale.asDiagonal() * gram * scale.asDiagonal();
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(gram);
+        const double     largest = es.eigenvalues().maxCoeff();
+        std::vector<int> keep;
+        for (int i = 0; i < es.eigenvalues().size(); ++i)
+          if (es.eigenvalues()[i] > 1e-10 * largest)
+            keep.push_back(i);
+        Eigen::MatrixXd T(gram.cols(), keep.size());
+        for (unsigned int j = 0; j < keep.size(); ++j)
+          T.col(j) = scale.asDiagonal() * es.eigenvectors().col(keep[j]) /
+                     std::sqrt(es.eigenvalues()[keep[j]]);
+        return T;
+      }
+
       Eigen::VectorXd
       local_part(const PETScVector &v, const IndexSet &owned)
       {
@@ -172,17 +197,7 @@ namespace squeal
       Eigen::MatrixXd MB   = multiply(*model.mass, B);
       Eigen::MatrixXd gram = B.transpose() * MB;
       sum_over_ranks(gram, comm);
-      gram = (gram + gram.transpose()).eval() / 2;
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(gram);
-      std::vector<int> directions;
-      for (int i = 0; i < es.eigenvalues().size(); ++i)
-        if (es.eigenvalues()[i] > 1e-10 * es.eigenvalues().maxCoeff())
-          directions.push_back(i);
-      Eigen::MatrixXd T(B.cols(), directions.size());
-      for (unsigned int j = 0; j < directions.size(); ++j)
-        T.col(j) = es.eigenvectors().col(directions[j]) /
-                   std::sqrt(es.eigenvalues()[directions[j]]);
-      Eigen::MatrixXd Nn = B * T;
+      Eigen::MatrixXd Nn = B * orthonormalising_transform(gram);
 
       const std::array<const PETScMatrix *, n_parts> parts = {
         {model.mass, model.rest, model.pad, model.normal, model.friction}};
@@ -219,26 +234,9 @@ namespace squeal
       for (unsigned int k = 0; k < n_parts; ++k)
         W[k] = multiply(*parts[k], B);
 
-      // M-orthonormalisation through the Gram matrix B^T M B, after scaling
-      // every vector to unit M-norm (the enrichment vectors are far smaller
-      // than the modes and must not be mistaken for dependent directions).
       Eigen::MatrixXd gram = B.transpose() * W[mass];
       sum_over_ranks(gram, comm);
-      gram = (gram + gram.transpose()).eval() / 2;
-      Eigen::VectorXd scale(B.cols());
-      for (int j = 0; j < B.cols(); ++j)
-        scale[j] = gram(j, j) > 0 ? 1. / std::sqrt(gram(j, j)) : 0.;
-      gram = scale.asDiagonal() * gram * scale.asDiagonal();
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(gram);
-      const double largest = es.eigenvalues().maxCoeff();
-      std::vector<int> keep;
-      for (int i = 0; i < es.eigenvalues().size(); ++i)
-        if (es.eigenvalues()[i] > 1e-10 * largest)
-          keep.push_back(i);
-      Eigen::MatrixXd T(B.cols(), keep.size());
-      for (unsigned int j = 0; j < keep.size(); ++j)
-        T.col(j) = scale.asDiagonal() * es.eigenvectors().col(keep[j]) /
-                   std::sqrt(es.eigenvalues()[keep[j]]);
+      const Eigen::MatrixXd T = orthonormalising_transform(gram);
       V = B * T;
       for (auto &w : W)
         w = (w * T).eval();
