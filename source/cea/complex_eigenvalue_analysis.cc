@@ -9,6 +9,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <squeal/cea/complex_eigenvalue_analysis.h>
+#include <squeal/geometry/tribobrake_mesh.h>
 
 #include <array>
 #include <chrono>
@@ -323,6 +324,129 @@ namespace squeal
                                           0, 0);
     }
 
+    namespace
+    {
+      // The name of a disc mode from the axial displacement of the disc's
+      // top face: (s, n) with n the dominant angular harmonic on the outer
+      // rim and s the sign changes along the radius through the rim's
+      // largest amplitude; "+" when the pad (at theta = 0) sits on an
+      // antinode, "-" on a node; "in-plane" when the axial motion is small
+      // against the in-plane motion.
+      std::string
+      disc_mode_name(const physics::StructuralModel &model,
+                     const physics::PETScVector &    re,
+                     const physics::PETScVector &    im)
+      {
+        const auto &g = model.prm.geometry;
+        // (r, theta, uz_re, uz_im, |u_inplane|^2) at owned top-face vertices
+        std::vector<std::array<double, 5>> local;
+        for (const auto &cell : model.dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned() &&
+              cell->material_id() == geometry::material::disc)
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == geometry::boundary::disc_contact)
+                for (const auto v : cell->face(f)->vertex_indices())
+                  {
+                    const Point<3> x = cell->face(f)->vertex(v);
+                    const auto     z = cell->face(f)->vertex_dof_index(v, 2);
+                    if (!model.locally_owned_dofs.is_element(z))
+                      continue;
+                    double inplane = 0;
+                    for (unsigned int c = 0; c < 2; ++c)
+                      {
+                        const auto i = cell->face(f)->vertex_dof_index(v, c);
+                        inplane += re(i) * re(i) + im(i) * im(i);
+                      }
+                    local.push_back({{std::hypot(x[0], x[1]),
+                                     std::atan2(x[1], x[0]), re(z), im(z),
+                                     inplane}});
+                  }
+        std::vector<std::array<double, 5>> all;
+        for (const auto &part : Utilities::MPI::all_gather(model.comm, local))
+          all.insert(all.end(), part.begin(), part.end());
+        double axial = 0, inplane = 0;
+        for (const auto &a : all)
+          {
+            axial += a[2] * a[2] + a[3] * a[3];
+            inplane += a[4];
+          }
+        if (all.empty())
+          return "";
+        if (axial < 0.25 * inplane)
+          return "in-plane";
+        // rim: the vertices at the outer radius
+        const double tol = 1e-6 * g.disc_outer_radius;
+        std::vector<std::array<double, 5>> rim;
+        for (const auto &a : all)
+          if (std::abs(a[0] - g.disc_outer_radius) < tol)
+            rim.push_back(a);
+        unsigned int best_n = 0;
+        double       best   = -1;
+        for (unsigned int n = 0; n <= rim.size() / 4; ++n)
+          {
+            std::complex<double> cp = 0, cm = 0;
+            for (const auto &a : rim)
+              {
+                const std::complex<double> w(a[2], a[3]);
+                cp += w * std::exp(std::complex<double>(0, -double(n) * a[1]));
+                cm += w * std::exp(std::complex<double>(0, double(n) * a[1]));
+              }
+            const double power = std::norm(cp) + (n > 0 ? std::norm(cm) : 0.);
+            if (power > best * (1 + 1e-9))
+              {
+                best   = power;
+                best_n = n;
+              }
+          }
+        // the rim point of largest amplitude and its phase
+        const auto peak = *std::max_element(
+          rim.begin(), rim.end(), [](const auto &a, const auto &b) {
+            return std::hypot(a[2], a[3]) < std::hypot(b[2], b[3]);
+          });
+        const std::complex<double> phase =
+          std::conj(std::complex<double>(peak[2], peak[3])) /
+          std::abs(std::complex<double>(peak[2], peak[3]));
+        // nodal circles: sign changes along the radius at the peak's angle
+        std::vector<std::pair<double, double>> line;
+        for (const auto &a : all)
+          if (std::abs(std::remainder(a[1] - peak[1], 2 * M_PI)) < 1e-6)
+            line.emplace_back(a[0], (std::complex<double>(a[2], a[3]) * phase).real());
+        std::sort(line.begin(), line.end());
+        const double amax = std::abs(peak[2]) + std::abs(peak[3]);
+        unsigned int circles = 0;
+        double       last    = 0;
+        for (const auto &[r, w] : line)
+          if (std::abs(w) > 1e-3 * amax)
+            {
+              if (last != 0 && (w > 0) != (last > 0))
+                ++circles;
+              last = w;
+            }
+        std::string name = "(" + std::to_string(circles) + "," +
+                           std::to_string(best_n);
+        if (best_n > 0)
+          {
+            // amplitude at the pad (theta = 0) against a quarter wave away
+            const auto amplitude = [&](const double theta) {
+              double a = 0, d = 1e300;
+              for (const auto &x : rim)
+                {
+                  const double dt = std::abs(std::remainder(x[1] - theta, 2 * M_PI));
+                  if (dt < d)
+                    {
+                      d = dt;
+                      a = std::hypot(x[2], x[3]);
+                    }
+                }
+              return a;
+            };
+            name += amplitude(0.) >= amplitude(M_PI / (2 * best_n)) ? "+" : "-";
+          }
+        return name + ")";
+      }
+    } // namespace
+
     void
     ComplexEigenvalueAnalysis::output_results() const
     {
@@ -395,7 +519,7 @@ namespace squeal
           m.compress(VectorOperation::insert);
       }
       std::ostringstream participation;
-      participation << "point,mode,freq_Hz,re_per_s,disc,pad,support\n"
+      participation << "point,mode,freq_Hz,re_per_s,disc,pad,support,name\n"
                     << std::setprecision(8);
 
       std::vector<std::pair<double, std::string>> records;
@@ -429,7 +553,12 @@ namespace squeal
             participation << p << ',' << k << ','
                           << pt.lambda[k].imag() / (2 * M_PI) << ','
                           << pt.lambda[k].real() << ',' << e[0] / total << ','
-                          << e[1] / total << ',' << e[2] / total << '\n';
+                          << e[1] / total << ',' << e[2] / total << ','
+                          << '"'
+                          << (e[0] > 0.5 * total ?
+                                disc_mode_name(model, re, im) :
+                                (e[1] > e[2] ? "pad" : "support"))
+                          << "\"\n";
           }
           std::ostringstream name;
           name << "mode_p" << p << "_m" << k << "_" << std::fixed
