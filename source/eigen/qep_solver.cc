@@ -10,7 +10,6 @@
 
 #include <petscksp.h>
 #include <slepceps.h>
-#include <slepcpep.h>
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,8 @@
  * (K_rest + s K_pad + K_n, M) up to band_factor * f_max at a few sample pad
  * moduli s, enriched with the static responses K_s^{-1} K_t Phi_s to the
  * friction forces of those modes, made M-orthonormal by an eigen-decomposition
- * of the Gram matrix (directions with relative M-norm^2 below 1e-8 dropped).
+ * of the Gram matrix of the vectors scaled to unit M-norm (directions with
+ * relative M-norm^2 below 1e-10 dropped).
  * All matrix parts are projected once; a sweep point is then the dense
  * 2r x 2r companion eigenproblem of (lambda^2 I + lambda C_r + K_r) q = 0
  * (LAPACK dgeev). The residual of every reduced eigenpair on the full model,
