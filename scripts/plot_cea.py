@@ -94,15 +94,21 @@ def main():
     fig, ax = plt.subplots(figsize=(7, 4))
     cmap = plt.get_cmap("viridis")
     fmax = max([float(r["freq_max_Hz"]) for r in regions] + [1.0])
+    # regions of one mu are stacked slightly apart so that none hides another
+    stacked = {}
+    for r in sorted(regions, key=lambda r: float(r["freq_min_Hz"])):
+        k = stacked.setdefault(float(r["mu"]), [0])
+        r["_offset"] = 0.02 * k[0]
+        k[0] += 1
     for r in regions:
-        mu = float(r["mu"])
+        mu = float(r["mu"]) + r["_offset"]
         x0 = math.log10(float(r["E_pad_min_Pa"]))
         x1 = math.log10(float(r["E_pad_max_Pa"]))
         f = 0.5 * (float(r["freq_min_Hz"]) + float(r["freq_max_Hz"]))
         ax.plot([x0, x1 if x1 > x0 else x0 + 0.02], [mu, mu], lw=8,
                 color=cmap(f / fmax), solid_capstyle="butt")
-        ax.annotate(f"{f / 1e3:.1f} kHz", ((x0 + x1) / 2, mu), fontsize=7,
-                    ha="center", va="bottom", xytext=(0, 5),
+        ax.annotate(f"{f / 1e3:.1f} kHz", (x1, mu), fontsize=6,
+                    ha="left", va="center", xytext=(3, 0),
                     textcoords="offset points")
     ax.set_yticks(mus)
     ax.set_xlim(math.log10(min(float(r["E_pad_Pa"]) for r in rows)) - 0.05,
