@@ -355,8 +355,11 @@ namespace squeal
       prm.declare_entry("Maximum frequency", str(f_max), positive,
                         "Upper end of the band [Hz].");
       prm.declare_entry("Method", method, Patterns::Selection("full|reduced"),
-                        "full: SLEPc quadratic eigensolver (TOAR, shift-and-"
-                        "invert with MUMPS) at every point; reduced: modal "
+                        "full: at every point, SLEPc Krylov-Schur on the "
+                        "undamped friction-coupled problem (real shift-and-"
+                        "invert, MUMPS), then the damped problem on that "
+                        "subspace, refined to relative residual 1e-8; "
+                        "reduced: modal "
                         "basis with friction enrichment, dense LAPACK per "
                         "point, checked against full at a few points.");
       prm.declare_entry("Tolerance", str(tolerance),
