@@ -60,8 +60,9 @@ main(int argc, char **argv)
         {
           if (root)
             std::cout << file << ": valid (scene " << prm.scene.bodies
-                      << ", " << prm.sweep.mu.size() << " x "
-                      << prm.sweep.n_E_pad << " sweep points, output to "
+                      << ", " << prm.sweep.second.values.size() << " x "
+                      << prm.sweep.first.values.size()
+                      << " sweep points, output to "
                       << prm.output.directory << ")" << std::endl;
           return 0;
         }

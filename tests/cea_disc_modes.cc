@@ -47,8 +47,12 @@ namespace
                             100., 1e-10, 60};
     std::vector<std::complex<double>> l;
     for (const auto &p :
-         eigen::solve_full(model.parts(), model.E_ref, 0., alpha, beta, band,
-                           quiet))
+         eigen::solve_full(model.parts(),
+                           {prm.materials.pad.youngs_modulus, 0.,
+                            prm.interface.normal_stiffness,
+                            prm.springs.stiffness,
+                            prm.materials.support.density, alpha, beta},
+                           band, quiet))
       l.push_back(p.lambda);
     return l;
   }

@@ -37,7 +37,12 @@ main(int argc, char **argv)
   physics::StructuralModel model(prm, MPI_COMM_WORLD);
   model.setup_and_assemble(quiet);
   const auto         parts = model.parts();
-  const double       alpha = prm.damping.alpha, beta = prm.damping.beta;
+  const auto at_point = [&](const double E, const double mu) {
+    parameters::ScalarPoint p = prm.nominal_point();
+    p.E_pad                   = E;
+    p.mu                      = mu;
+    return p;
+  };
   eigen::BandOptions band{900., 20000., 100., 1e-10, 60};
 
   for (const double mu : {0., 0.01})
@@ -45,7 +50,7 @@ main(int argc, char **argv)
       {
         double max_re = -1e300;
         for (const auto &p :
-             eigen::solve_full(parts, E, mu, alpha, beta, band, quiet))
+             eigen::solve_full(parts, at_point(E, mu), band, quiet))
           max_re = std::max(max_re, p.lambda.real());
         check("A5 mu = " + std::to_string(mu).substr(0, 4) + ", E_pad = " +
                 std::to_string(int(E / 1e9)) + " GPa: largest Re lambda <= 0",
@@ -53,12 +58,13 @@ main(int argc, char **argv)
       }
 
   eigen::ReducedModel reduced;
-  reduced.build(parts, {1e9, 1e10, 1e11}, band, 1.5, true, quiet);
+  reduced.build(parts, {at_point(1e9, 0), at_point(1e10, 0), at_point(1e11, 0)},
+                band, 1.5, true, quiet);
   bool first = true;
   for (const auto &[E, mu] : {std::pair{25e9, 0.5}, std::pair{40e9, 0.2}})
     {
-      const auto full = eigen::solve_full(parts, E, mu, alpha, beta, band, quiet);
-      const auto red  = reduced.solve(E, mu, alpha, beta, 900., 20000.);
+      const auto full = eigen::solve_full(parts, at_point(E, mu), band, quiet);
+      const auto red  = reduced.solve(at_point(E, mu), 900., 20000.);
       double     df = 0, dre = 0, residual = 0;
       for (const auto &f : full)
         {

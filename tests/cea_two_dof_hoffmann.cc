@@ -20,7 +20,7 @@ namespace
 
   struct TwoDof
   {
-    eigen::PETScMatrix M, rest, pad, normal, friction;
+    eigen::PETScMatrix M, zero, rest, friction;
     TwoDof()
     {
       IndexSet owned(2);
@@ -30,7 +30,7 @@ namespace
       for (unsigned int i = 0; i < 2; ++i)
         for (unsigned int j = 0; j < 2; ++j)
           dsp.add(i, j);
-      for (auto *A : {&M, &rest, &pad, &normal, &friction})
+      for (auto *A : {&M, &zero, &rest, &friction})
         A->reinit(owned, owned, dsp, MPI_COMM_WORLD);
       if (owned.n_elements() > 0)
         {
@@ -42,13 +42,20 @@ namespace
           rest.set(1, 1, b);
           friction.set(0, 1, -k3);
         }
-      for (auto *A : {&M, &rest, &pad, &normal, &friction})
+      for (auto *A : {&M, &zero, &rest, &friction})
         A->compress(VectorOperation::insert);
     }
     physics::MatrixParts
     parts() const
     {
-      return {&M, &rest, &pad, &normal, &friction, 1.};
+      // M_fixed, M_support, K_rest, K_pad, K_springs, K_n, K_t
+      return {{&M, &zero, &rest, &zero, &zero, &zero, &friction}, unit()};
+    }
+    // every reference and scaled value 1: the coefficients are mu, alpha, beta
+    static parameters::ScalarPoint
+    unit(const double mu = 0, const double alpha = 0, const double beta = 0)
+    {
+      return {1., mu, 1., 1., 1., alpha, beta};
     }
   };
 
@@ -60,14 +67,14 @@ namespace
     eigen::BandOptions band{1., 1e4, 1., 1e-12, 2};
     std::vector<std::complex<double>> l;
     if (!reduced)
-      for (const auto &p : eigen::solve_full(model.parts(), 1., mu, alpha,
-                                             beta, band, quiet))
+      for (const auto &p : eigen::solve_full(
+             model.parts(), TwoDof::unit(mu, alpha, beta), band, quiet))
         l.push_back(p.lambda);
     else
       {
         eigen::ReducedModel r;
-        r.build(model.parts(), {1.}, band, 1.5, true, quiet);
-        for (const auto &p : r.solve(1., mu, alpha, beta, 1., 1e4))
+        r.build(model.parts(), {TwoDof::unit()}, band, 1.5, true, quiet);
+        for (const auto &p : r.solve(TwoDof::unit(mu, alpha, beta), 1., 1e4))
           l.push_back(p.lambda);
       }
     return l;

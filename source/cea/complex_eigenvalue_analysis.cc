@@ -11,6 +11,7 @@
 #include <squeal/cea/complex_eigenvalue_analysis.h>
 #include <squeal/geometry/tribobrake_mesh.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <filesystem>
@@ -62,6 +63,55 @@ namespace squeal
       model.setup_and_assemble(pcout);
     }
 
+    std::vector<parameters::ScalarPoint>
+    ComplexEigenvalueAnalysis::basis_samples() const
+    {
+      const unsigned int n = prm.eigensolver.reduced_samples;
+      std::vector<parameters::ScalarPoint> samples{prm.sweep_points()[0]};
+      for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
+        {
+          if (!parameters::sweepable_parameter(axis->parameter).structural)
+            continue;
+          const auto [lo, hi] =
+            std::minmax_element(axis->values.begin(), axis->values.end());
+          const bool log = axis->log_scale();
+          std::vector<double> values;
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const double t = n == 1 ? 0.5 : double(i) / (n - 1);
+              values.push_back(log ? *lo * std::pow(*hi / *lo, t) :
+                                     *lo + (*hi - *lo) * t);
+              if (*hi == *lo)
+                break;
+            }
+          std::vector<parameters::ScalarPoint> combined;
+          for (const auto &s : samples)
+            for (const double v : values)
+              {
+                combined.push_back(s);
+                combined.back().set(axis->parameter, v);
+              }
+          samples = combined;
+        }
+      return samples;
+    }
+
+    std::string
+    ComplexEigenvalueAnalysis::describe(const parameters::ScalarPoint &p) const
+    {
+      std::ostringstream s;
+      s << std::setprecision(4);
+      for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
+        {
+          const auto &info = parameters::sweepable_parameter(axis->parameter);
+          s << (axis == &prm.sweep.first ? "" : ", ") << info.symbol << " = "
+            << p.get(axis->parameter);
+          if (info.unit[0])
+            s << ' ' << info.unit;
+        }
+      return s.str();
+    }
+
     void
     ComplexEigenvalueAnalysis::solve_sweep()
     {
@@ -73,68 +123,96 @@ namespace squeal
         {
           TimerOutput::Scope t(timer, "reduced basis");
           pcout << "Building the reduced basis" << std::endl;
-          reduced.build(model.parts(), es.reduced_sample_moduli, band,
+          reduced.build(model.parts(), basis_samples(), band,
                         es.reduced_band_factor, es.reduced_enrichment, pcout);
         }
 
-      const std::vector<double> E_values =
-        prm.scene.bodies == "tribobrake" ? prm.sweep.E_pad_values() :
-                                           std::vector<double>{model.E_ref};
-      const unsigned int n_points = E_values.size() * prm.sweep.mu.size();
-      pcout << "Sweep: " << prm.sweep.mu.size() << " friction coefficients x "
-            << E_values.size() << " pad moduli = " << n_points
-            << " points, " << (reduced_method ? "reduced" : "full")
-            << " solver, band " << es.f_min << "-" << es.f_max << " Hz"
-            << std::endl;
+      const auto         sweep    = prm.sweep_points();
+      const unsigned int n_points = sweep.size();
+      pcout << "Sweep: " << prm.sweep.second.values.size() << " x "
+            << prm.sweep.second.parameter << ", "
+            << prm.sweep.first.values.size() << " x "
+            << prm.sweep.first.parameter << " = " << n_points << " points, "
+            << (reduced_method ? "reduced" : "full") << " solver, band "
+            << es.f_min << "-" << es.f_max << " Hz" << std::endl;
       const auto start = std::chrono::steady_clock::now();
-      for (const double mu : prm.sweep.mu)
-        for (const double E : E_values)
-          {
-            TimerOutput::Scope t(timer, reduced_method ? "reduced solve" :
-                                                         "full solve");
-            Point p;
-            p.mu    = mu;
-            p.E_pad = E;
-            if (reduced_method)
+      const auto progress = [&](const unsigned int k, const auto &values,
+                                const unsigned int n_modes) {
+        const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                        start)
+            .count();
+        pcout << "  point " << k << " of " << n_points << " ("
+              << describe(values) << "): " << n_modes << " modes, elapsed "
+              << std::setprecision(3) << elapsed << " s, remaining ~"
+              << elapsed * (n_points - k) / k << " s" << std::setprecision(6)
+              << std::endl;
+      };
+      if (reduced_method)
+        {
+          // Sweep points are independent small dense problems: each rank
+          // solves every n_ranks-th point, then all results are shared.
+          TimerOutput::Scope t(timer, "reduced solve");
+          const unsigned int rank = Utilities::MPI::this_mpi_process(comm),
+                             size = Utilities::MPI::n_mpi_processes(comm);
+          std::vector<double> packed; // p, m, then (re, im, res, q) per pair
+          unsigned int        done = 0;
+          for (unsigned int p = rank; p < n_points; p += size)
+            {
+              const auto pairs = reduced.solve(sweep[p], es.f_min, es.f_max);
+              packed.push_back(p);
+              packed.push_back(pairs.size());
+              for (const auto &r : pairs)
+                {
+                  packed.insert(packed.end(),
+                                {r.lambda.real(), r.lambda.imag(), r.residual});
+                  for (const auto &z : r.q)
+                    packed.insert(packed.end(), {z.real(), z.imag()});
+                }
+              ++done;
+              const unsigned int k = std::min(n_points, done * size);
+              if (k == n_points || k % 10 < size)
+                progress(k, sweep[p], pairs.size());
+            }
+          points.resize(n_points);
+          const int r = reduced.size();
+          for (const auto &part : Utilities::MPI::all_gather(comm, packed))
+            for (std::size_t i = 0; i < part.size();)
               {
-                const auto pairs = reduced.solve(E, mu, prm.damping.alpha,
-                                                 prm.damping.beta, es.f_min,
-                                                 es.f_max);
-                for (const auto &r : pairs)
+                Point &pt = points[static_cast<unsigned int>(part[i])];
+                const unsigned int m = part[i + 1];
+                i += 2;
+                for (unsigned int j = 0; j < m; ++j, i += 3 + 2 * r)
                   {
-                    p.lambda.push_back(r.lambda);
-                    p.residual.push_back(r.residual);
-                    p.q.push_back(r.q);
+                    pt.lambda.emplace_back(part[i], part[i + 1]);
+                    pt.residual.push_back(part[i + 2]);
+                    Eigen::VectorXcd q(r);
+                    for (int c = 0; c < r; ++c)
+                      q[c] = {part[i + 3 + 2 * c], part[i + 4 + 2 * c]};
+                    pt.q.push_back(q);
                   }
               }
-            else
-              {
-                p.full = eigen::solve_full(model.parts(), E, mu,
-                                           prm.damping.alpha, prm.damping.beta,
-                                           band, pcout);
-                // 1.5 f_max holds about 1.7 times the modes of the band
-                band.initial_nev = std::max<unsigned int>(
-                  40, 1.9 * p.full.size() + 10);
-                for (const auto &r : p.full)
-                  {
-                    p.lambda.push_back(r.lambda);
-                    p.residual.push_back(r.residual);
-                  }
-              }
-            points.push_back(std::move(p));
-            const double elapsed =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                            start)
-                .count();
-            const unsigned int k = points.size();
-            if (k == n_points || !reduced_method || k % 10 == 0)
-              pcout << "  point " << k << " of " << n_points << " (mu = " << mu
-                    << ", E_pad = " << std::setprecision(4) << E
-                    << " Pa): " << points.back().lambda.size()
-                    << " modes, elapsed " << std::setprecision(3) << elapsed
-                    << " s, remaining ~" << elapsed * (n_points - k) / k
-                    << " s" << std::setprecision(6) << std::endl;
-          }
+          for (unsigned int p = 0; p < n_points; ++p)
+            points[p].values = sweep[p];
+          return;
+        }
+      for (const auto &values : sweep)
+        {
+          TimerOutput::Scope t(timer, "full solve");
+          Point p;
+          p.values = values;
+          p.full   = eigen::solve_full(model.parts(), values, band, pcout);
+          // 1.5 f_max holds about 1.7 times the modes of the band
+          band.initial_nev =
+            std::max<unsigned int>(40, 1.9 * p.full.size() + 10);
+          for (const auto &r : p.full)
+            {
+              p.lambda.push_back(r.lambda);
+              p.residual.push_back(r.residual);
+            }
+          points.push_back(std::move(p));
+          progress(points.size(), values, points.back().lambda.size());
+        }
     }
 
     void
@@ -174,8 +252,7 @@ namespace squeal
       for (const unsigned int p : chosen)
         {
           const auto full =
-            eigen::solve_full(model.parts(), points[p].E_pad, points[p].mu,
-                              prm.damping.alpha, prm.damping.beta, band, pcout);
+            eigen::solve_full(model.parts(), points[p].values, band, pcout);
           // Every full eigenvalue must have a reduced counterpart.
           for (const auto &f : full)
             {
@@ -196,8 +273,9 @@ namespace squeal
               max_df  = std::max(max_df, df);
               max_dre = std::max(max_dre, dre);
               std::ostringstream row;
-              row << std::setprecision(12) << p << ',' << points[p].mu << ','
-                  << points[p].E_pad << ',' << f.lambda.real() << ','
+              row << std::setprecision(12) << p << ','
+                  << points[p].values.mu << ',' << points[p].values.E_pad
+                  << ',' << f.lambda.real() << ','
                   << f.lambda.imag() / (2 * M_PI) << ',' << match.real()
                   << ',' << match.imag() / (2 * M_PI) << ',' << df << ','
                   << dre;
@@ -226,18 +304,21 @@ namespace squeal
       unsigned int first = 0;
       while (first < points.size())
         {
-          // One friction coefficient's run of points.
+          // One value of the second parameter: a run of the first.
+          const auto second = [&](const unsigned int p) {
+            return points[p].values.get(prm.sweep.second.parameter);
+          };
           unsigned int last = first;
-          while (last + 1 < points.size() && points[last + 1].mu == points[first].mu)
+          while (last + 1 < points.size() && second(last + 1) == second(first))
             ++last;
           std::vector<std::vector<std::complex<double>>> lambdas;
           std::vector<Eigen::MatrixXd>                   macs;
-          std::vector<double>                            E;
+          std::vector<double>                            x;
           std::vector<unsigned int>                      index;
           for (unsigned int p = first; p <= last; ++p)
             {
               lambdas.push_back(points[p].lambda);
-              E.push_back(points[p].E_pad);
+              x.push_back(points[p].values.get(prm.sweep.first.parameter));
               index.push_back(p);
               Eigen::MatrixXd mac;
               if (p > first)
@@ -265,11 +346,11 @@ namespace squeal
             for (unsigned int m = 0; m < points[p].lambda.size(); ++m)
               {
                 const auto l = points[p].lambda[m];
-                modes.push_back({p, points[p].mu, points[p].E_pad, m, l,
+                modes.push_back({p, points[p].values, m, l,
                                  points[p].residual[m], l.real() > tol,
                                  tracks[p - first][m]});
               }
-          const auto r = eigen::find_unstable_regions(points[first].mu, E, index,
+          const auto r = eigen::find_unstable_regions(second(first), x, index,
                                                       lambdas, tracks, tol);
           regions.insert(regions.end(), r.begin(), r.end());
           first = last + 1;
@@ -278,11 +359,19 @@ namespace squeal
       pcout << "\nUnstable regions (Re lambda > " << tol << " 1/s):" << std::endl;
       if (regions.empty())
         pcout << "  none: every eigenvalue in the band is stable" << std::endl;
+      const auto &first_info =
+        parameters::sweepable_parameter(prm.sweep.first.parameter);
+      const auto &second_info =
+        parameters::sweepable_parameter(prm.sweep.second.parameter);
       for (const auto &r : regions)
-        pcout << "  mu = " << r.mu << ": E_pad " << std::setprecision(4)
-              << r.E_min << " - " << r.E_max << " Pa (log10 "
-              << std::log10(r.E_min) << " - " << std::log10(r.E_max)
-              << "), " << std::setprecision(5) << r.f_min << " - " << r.f_max
+        pcout << "  " << second_info.symbol << " = " << r.second << ": "
+              << first_info.symbol << " " << std::setprecision(4)
+              << r.first_min << " - " << r.first_max << ' ' << first_info.unit
+              << (r.first_min > 0 ?
+                    " (log10 " + std::to_string(std::log10(r.first_min)).substr(0, 6) +
+                      " - " + std::to_string(std::log10(r.first_max)).substr(0, 6) + ")" :
+                    std::string())
+              << ", " << std::setprecision(5) << r.f_min << " - " << r.f_max
               << " Hz, max Re lambda " << r.max_re << " 1/s, track " << r.track
               << (r.partner_track >= 0 ?
                     " locked in with track " + std::to_string(r.partner_track) :
@@ -455,25 +544,49 @@ namespace squeal
       if (root)
         {
           std::ofstream csv(work_dir + "/eigenvalues.csv");
-          csv << "point,mu,E_pad_Pa,mode,re_per_s,freq_Hz,zeta,unstable,track\n"
-              << std::setprecision(12);
+          // The contract's columns, then any swept parameter beyond mu and
+          // the pad modulus.
+          std::vector<std::string> extra;
+          for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
+            if (axis->parameter != "pad modulus" &&
+                axis->parameter != "friction coefficient")
+              extra.push_back(axis->parameter);
+          csv << "point,mu,E_pad_Pa,mode,re_per_s,freq_Hz,zeta,unstable,track";
+          for (const auto &e : extra)
+            csv << ',' << parameters::column_name(e);
+          csv << '\n' << std::setprecision(12);
           std::ofstream res(work_dir + "/eigenvalue_residuals.csv");
           res << "point,mode,relative_residual\n" << std::setprecision(6);
           for (const auto &m : modes)
             {
-              csv << m.point << ',' << m.mu << ',' << m.E_pad << ',' << m.mode
-                  << ',' << m.lambda.real() << ','
+              csv << m.point << ',' << m.values.mu << ',' << m.values.E_pad
+                  << ',' << m.mode << ',' << m.lambda.real() << ','
                   << m.lambda.imag() / (2 * M_PI) << ','
                   << -m.lambda.real() / std::abs(m.lambda) << ','
-                  << (m.unstable ? 1 : 0) << ',' << m.track << '\n';
+                  << (m.unstable ? 1 : 0) << ',' << m.track;
+              for (const auto &e : extra)
+                csv << ',' << m.values.get(e);
+              csv << '\n';
               res << m.point << ',' << m.mode << ',' << m.residual << '\n';
             }
+          std::ofstream axes(work_dir + "/sweep_axes.csv");
+          axes << "axis,parameter,column,log\n";
+          for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
+            axes << (axis == &prm.sweep.first ? "first," : "second,")
+                 << axis->parameter << ','
+                 << parameters::column_name(axis->parameter) << ','
+                 << (axis->log_scale() ? 1 : 0) << '\n';
           std::ofstream reg(work_dir + "/unstable_regions.csv");
-          reg << "mu,E_pad_min_Pa,E_pad_max_Pa,freq_min_Hz,freq_max_Hz,"
-                 "max_re_per_s,track\n"
+          // mu,E_pad_min_Pa,E_pad_max_Pa,... for the default sweep
+          const auto &f = prm.sweep.first.parameter;
+          reg << parameters::column_name(prm.sweep.second.parameter) << ','
+              << parameters::column_name(f, "_min") << ','
+              << parameters::column_name(f, "_max")
+              << ",freq_min_Hz,freq_max_Hz,max_re_per_s,track\n"
               << std::setprecision(12);
           for (const auto &r : regions)
-            reg << r.mu << ',' << r.E_min << ',' << r.E_max << ',' << r.f_min
+            reg << r.second << ',' << r.first_min << ',' << r.first_max << ','
+                << r.f_min
                 << ',' << r.f_max << ',' << r.max_re << ',' << r.track << '\n';
           if (!check_rows.empty())
             {

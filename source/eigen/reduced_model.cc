@@ -95,24 +95,48 @@ namespace squeal
     } // namespace
 
     void
-    ReducedModel::build(const physics::MatrixParts &model,
-                        const std::vector<double> & sample_moduli,
-                        const BandOptions &         band,
-                        const double                band_factor,
-                        const bool                  enrichment,
-                        ConditionalOStream &        pcout)
+    ReducedModel::make_reference_mass(const physics::MatrixParts &model)
     {
-      comm  = model.mass->get_mpi_communicator();
-      owned = model.mass->locally_owned_range_indices();
+      parts = model;
+      comm  = model.matrix[0]->get_mpi_communicator();
+      owned = model.matrix[0]->locally_owned_range_indices();
+      model.mass(model.reference, M_ref);
+      for (unsigned int k = 0; k < n_parts; ++k)
+        active[k] = model.matrix[k]->frobenius_norm() > 0.;
+    }
+
+    Eigen::MatrixXd
+    ReducedModel::reference_mass_times(const Eigen::MatrixXd &X) const
+    {
+      Eigen::MatrixXd copy = X;
+      return multiply(M_ref, copy);
+    }
+
+    void
+    ReducedModel::build(const physics::MatrixParts &                model,
+                        const std::vector<parameters::ScalarPoint> &samples,
+                        const BandOptions &                         band,
+                        const double                                band_factor,
+                        const bool                                  enrichment,
+                        ConditionalOStream &                        pcout)
+    {
+      make_reference_mass(model);
       std::vector<Eigen::VectorXd> columns;
       BandOptions                  sample_band = band;
-      for (const double s : sample_moduli)
+      for (unsigned int i = 0; i < samples.size(); ++i)
         {
-          PETScMatrix K;
+          const auto &s = samples[i];
+          PETScMatrix K, M;
           model.symmetric_stiffness(s, K);
-          pcout << "  reduced basis: sample E_pad = " << s << " Pa" << std::endl;
-          const auto modes = solve_undamped(*model.mass, K, sample_band,
-                                            band_factor, true, pcout);
+          model.mass(s, M);
+          pcout << "  reduced basis: sample " << i + 1 << " of "
+                << samples.size() << " (E_pad = " << s.E_pad
+                << " Pa, k_n = " << s.interface_stiffness
+                << " N/m^3, k_spring = " << s.spring_stiffness
+                << " N/m, rho_support = " << s.support_density << " kg/m^3)"
+                << std::endl;
+          const auto modes =
+            solve_undamped(M, K, sample_band, band_factor, true, pcout);
           // the next sample has about as many modes: ask for them at once
           sample_band.initial_nev = modes.size() + modes.size() / 5 + 10;
           std::unique_ptr<DirectSolver> solver;
@@ -124,7 +148,7 @@ namespace squeal
               columns.push_back(local_part(mode.re, owned));
               if (enrichment)
                 {
-                  model.friction->vmult(force, mode.re);
+                  model.friction().vmult(force, mode.re);
                   if (force.l2_norm() > 0)
                     {
                       solver->solve(force, response);
@@ -147,8 +171,7 @@ namespace squeal
                                      const std::vector<PETScVector> &vectors,
                                      const bool with_residuals)
     {
-      comm  = model.mass->get_mpi_communicator();
-      owned = model.mass->locally_owned_range_indices();
+      make_reference_mass(model);
       Eigen::MatrixXd B(owned.n_elements(), vectors.size());
       for (unsigned int j = 0; j < vectors.size(); ++j)
         B.col(j) = local_part(vectors[j], owned);
@@ -164,7 +187,7 @@ namespace squeal
       for (unsigned int j = 0; j < vectors.size(); ++j)
         N.col(j) = local_part(vectors[j], owned);
       const auto m_norms = [&](Eigen::MatrixXd &X) {
-        Eigen::MatrixXd MX = multiply(*model.mass, X);
+        Eigen::MatrixXd MX = reference_mass_times(X);
         Eigen::MatrixXd n2 = (X.array() * MX.array()).colwise().sum();
         sum_over_ranks(n2, comm);
         return Eigen::VectorXd(n2.transpose().cwiseMax(0.).cwiseSqrt());
@@ -172,7 +195,7 @@ namespace squeal
       const Eigen::VectorXd before = m_norms(N);
       for (unsigned int pass = 0; pass < 2; ++pass)
         {
-          Eigen::MatrixXd MN           = multiply(*model.mass, N);
+          Eigen::MatrixXd MN           = reference_mass_times(N);
           Eigen::MatrixXd coefficients = V.transpose() * MN;
           sum_over_ranks(coefficients, comm);
           N -= V * coefficients;
@@ -194,17 +217,19 @@ namespace squeal
         }
       // Orthonormalise the new block among itself, then extend every
       // projected part by the new rows and columns only.
-      Eigen::MatrixXd MB   = multiply(*model.mass, B);
+      Eigen::MatrixXd MB   = reference_mass_times(B);
       Eigen::MatrixXd gram = B.transpose() * MB;
       sum_over_ranks(gram, comm);
       Eigen::MatrixXd Nn = B * orthonormalising_transform(gram);
 
-      const std::array<const PETScMatrix *, n_parts> parts = {
-        {model.mass, model.rest, model.pad, model.normal, model.friction}};
       const int r = V.cols(), q = Nn.cols();
+      has_residuals = false; // the Gram matrices are not extended
       for (unsigned int k = 0; k < n_parts; ++k)
+        if (!active[k])
+          Ar[k] = Eigen::MatrixXd::Zero(r + q, r + q);
+        else
         {
-          Eigen::MatrixXd WN = multiply(*parts[k], Nn);
+          Eigen::MatrixXd WN = multiply(*model.matrix[k], Nn);
           Eigen::MatrixXd top = V.transpose() * WN, left = Nn.transpose() * W[k],
                           corner = Nn.transpose() * WN;
           sum_over_ranks(top, comm);
@@ -220,7 +245,6 @@ namespace squeal
       Eigen::MatrixXd Vn(V.rows(), r + q);
       Vn << V, Nn;
       V  = Vn;
-      Mr = Ar[mass];
     }
 
     void
@@ -228,30 +252,38 @@ namespace squeal
                           Eigen::MatrixXd &           B,
                           const bool                  with_residuals)
     {
-      E_ref = model.E_ref;
-      const std::array<const PETScMatrix *, n_parts> parts = {
-        {model.mass, model.rest, model.pad, model.normal, model.friction}};
       for (unsigned int k = 0; k < n_parts; ++k)
-        W[k] = multiply(*parts[k], B);
+        if (active[k])
+          W[k] = multiply(*model.matrix[k], B);
+        else
+          W[k].resize(0, 0);
 
-      Eigen::MatrixXd gram = B.transpose() * W[mass];
+      Eigen::MatrixXd MB   = reference_mass_times(B);
+      Eigen::MatrixXd gram = B.transpose() * MB;
       sum_over_ranks(gram, comm);
       const Eigen::MatrixXd T = orthonormalising_transform(gram);
       V = B * T;
       for (auto &w : W)
-        w = (w * T).eval();
+        if (w.size() > 0)
+          w = (w * T).eval();
 
       for (unsigned int k = 0; k < n_parts; ++k)
         {
+          if (!active[k])
+            {
+              Ar[k] = Eigen::MatrixXd::Zero(V.cols(), V.cols());
+              continue;
+            }
           Ar[k] = V.transpose() * W[k];
           sum_over_ranks(Ar[k], comm);
           for (unsigned int l = k; l < n_parts && with_residuals; ++l)
-            {
-              G[k][l] = W[k].transpose() * W[l];
-              sum_over_ranks(G[k][l], comm);
-            }
+            if (active[l])
+              {
+                G[k][l] = W[k].transpose() * W[l];
+                sum_over_ranks(G[k][l], comm);
+              }
         }
-      Mr = Ar[mass];
+      has_residuals = with_residuals;
     }
 
     namespace
@@ -288,20 +320,19 @@ namespace squeal
     } // namespace
 
     std::vector<EigenPair>
-    solve_full(const physics::MatrixParts &model,
-               const double                E_pad,
-               const double                mu,
-               const double                alpha,
-               const double                beta,
-               const BandOptions &         band,
-               ConditionalOStream &        pcout)
+    solve_full(const physics::MatrixParts &   model,
+               const parameters::ScalarPoint &point,
+               const BandOptions &            band,
+               ConditionalOStream &           pcout)
     {
-      PETScMatrix K, C;
-      model.stiffness(E_pad, mu, K);
-      model.damping(E_pad, alpha, beta, C);
-      const auto modes =
-        solve_undamped(*model.mass, K, band, 1.5, mu == 0. /* symmetric */,
-                       pcout);
+      PETScMatrix M, K, C;
+      model.mass(point, M);
+      model.stiffness(point, K);
+      model.damping(point, C);
+      const bool symmetric =
+        point.mu == 0. || point.interface_stiffness == 0. ||
+        model.friction().frobenius_norm() == 0.;
+      const auto modes = solve_undamped(M, K, band, 1.5, symmetric, pcout);
       std::vector<PETScVector> vectors;
       for (const auto &m : modes)
         {
@@ -322,13 +353,13 @@ namespace squeal
           double worst = 0;
           std::vector<PETScVector> corrections;
           for (const auto &r :
-               projected.solve(E_pad, mu, alpha, beta, band.f_min, band.f_max))
+               projected.solve(point, band.f_min, band.f_max))
             {
               EigenPair p;
               p.lambda = r.lambda;
               projected.expand(r.q, p.re, p.im);
               PETScVector r_re(p.re), r_im(p.re);
-              p.residual = residual(*model.mass, C, K, p.lambda, p.re, p.im,
+              p.residual = residual(M, C, K, p.lambda, p.re, p.im,
                                     r_re, r_im);
               worst = std::max(worst, p.residual);
               if (p.residual > tolerance)
@@ -353,7 +384,7 @@ namespace squeal
               P.reinit(K);
               P.copy_from(K);
               P.add(tau, C);
-              P.add(tau * tau, *model.mass);
+              P.add(tau * tau, M);
               preconditioner = std::make_unique<DirectSolver>(P);
             }
           for (auto &r : corrections)
@@ -373,19 +404,22 @@ namespace squeal
     }
 
     std::vector<ReducedEigenPair>
-    ReducedModel::solve(const double E_pad,
-                        const double mu,
-                        const double alpha,
-                        const double beta,
-                        const double f_min,
-                        const double f_max) const
+    ReducedModel::solve(const parameters::ScalarPoint &point,
+                        const double                   f_min,
+                        const double                   f_max) const
     {
-      const int       r = Mr.rows();
-      const double    s = E_pad / E_ref;
-      const Eigen::MatrixXd K_struct = Ar[rest] + s * Ar[pad];
-      const Eigen::MatrixXd K = K_struct + Ar[normal] + mu * Ar[friction];
-      const Eigen::MatrixXd C = alpha * Mr + beta * K_struct;
-      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Mr);
+      const int  r = V.cols();
+      const auto c = parts.coefficients(point);
+      const auto combine = [&](const physics::MatrixParts::Coefficients &a) {
+        Eigen::MatrixXd A = Eigen::MatrixXd::Zero(r, r);
+        for (unsigned int k = 0; k < n_parts; ++k)
+          if (active[k] && a[k] != 0.)
+            A += a[k] * Ar[k];
+        return A;
+      };
+      const Eigen::MatrixXd M = combine(c.mass), K = combine(c.stiffness),
+                            C = combine(c.damping);
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
 
       Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * r, 2 * r);
       A.topRightCorner(r, r)    = Eigen::MatrixXd::Identity(r, r);
@@ -406,54 +440,78 @@ namespace squeal
         throw std::runtime_error("reduced model: LAPACK dgeev failed, info = " +
                                  std::to_string(info));
 
-      // Coefficients of the parts in the residual and in the norms.
+      using Complex = std::complex<double>;
       std::vector<ReducedEigenPair> pairs;
       for (int j = 0; j < n; ++j)
         {
-          if (wi[j] == 0.)
+          // one of each conjugate pair: the column with Im lambda > 0
+          if (wi[j] <= 0.)
             continue;
-          const bool first_of_pair = wi[j] > 0;
-          if (first_of_pair)
+          const Complex lambda(wr[j], wi[j]);
+          const double  f = lambda.imag() / (2 * M_PI);
+          if (f < f_min || f > f_max)
+            continue;
+          Eigen::VectorXcd q(r);
+          for (int i = 0; i < r; ++i)
+            q[i] = {vr[i + j * n], vr[i + (j + 1) * n]};
+          q.normalize();
+          pairs.push_back({lambda, q, -1.});
+        }
+      if (has_residuals && !pairs.empty())
+        {
+          // ||sum_k a_k A_k V q||^2 = sum_kl conj(a_k) a_l h_kl with
+          // h_kl = q^H G_kl q and h_lk = conj(h_kl) (G_lk = G_kl^T); all
+          // pairs at once, as real matrix products.
+          const int       m = pairs.size();
+          Eigen::MatrixXd Qr(r, m), Qi(r, m);
+          for (int j = 0; j < m; ++j)
             {
-              const std::complex<double> lambda(wr[j], wi[j]);
-              const double f = lambda.imag() / (2 * M_PI);
-              if (f >= f_min && f <= f_max)
+              Qr.col(j) = pairs[j].q.real();
+              Qi.col(j) = pairs[j].q.imag();
+            }
+          std::vector<std::array<std::array<Complex, n_parts>, n_parts>> h(m);
+          for (unsigned int k = 0; k < n_parts; ++k)
+            for (unsigned int l = k; l < n_parts; ++l)
+              if (active[k] && active[l])
                 {
-                  Eigen::VectorXcd q(r);
-                  for (int i = 0; i < r; ++i)
-                    q[i] = {vr[i + j * n], vr[i + (j + 1) * n]};
-                  q.normalize();
-                  if (G[0][0].size() == 0)
+                  const Eigen::MatrixXd A = G[k][l] * Qr, B = G[k][l] * Qi;
+                  const Eigen::VectorXd re =
+                    (Qr.cwiseProduct(A) + Qi.cwiseProduct(B)).colwise().sum();
+                  const Eigen::VectorXd im =
+                    (Qr.cwiseProduct(B) - Qi.cwiseProduct(A)).colwise().sum();
+                  for (int j = 0; j < m; ++j)
                     {
-                      pairs.push_back({lambda, q, -1.});
-                      ++j;
-                      continue;
+                      h[j][k][l] = {re[j], im[j]};
+                      h[j][l][k] = std::conj(h[j][k][l]);
                     }
-                  // h_kl = q^H G_kl q, h_lk = conj(h_kl) for real G.
-                  std::array<std::array<std::complex<double>, n_parts>, n_parts> h;
-                  for (unsigned int k = 0; k < n_parts; ++k)
-                    for (unsigned int l = k; l < n_parts; ++l)
-                      {
-                        h[k][l] = q.dot(G[k][l] * q);
-                        h[l][k] = std::conj(h[k][l]);
-                      }
-                  const auto norm = [&](const std::array<std::complex<double>, n_parts> &c) {
-                    std::complex<double> sum = 0;
-                    for (unsigned int k = 0; k < n_parts; ++k)
-                      for (unsigned int l = 0; l < n_parts; ++l)
-                        sum += std::conj(c[k]) * c[l] * h[k][l];
-                    return std::sqrt(std::max(0., sum.real()));
-                  };
-                  const std::complex<double> one_lb = 1. + lambda * beta;
-                  const double res = norm({lambda * lambda + lambda * alpha,
-                                           one_lb, s * one_lb, 1., mu});
-                  const double scale =
-                    std::norm(lambda) * norm({1., 0., 0., 0., 0.}) +
-                    std::abs(lambda) * norm({alpha, beta, beta * s, 0., 0.}) +
-                    norm({0., 1., s, 1., mu});
-                  pairs.push_back({lambda, q, res / scale});
                 }
-              ++j; // skip the conjugate
+          using Vector = std::array<Complex, n_parts>;
+          const auto as_complex = [](const physics::MatrixParts::Coefficients &a) {
+            Vector z;
+            for (unsigned int k = 0; k < n_parts; ++k)
+              z[k] = a[k];
+            return z;
+          };
+          const Vector mass = as_complex(c.mass), damping = as_complex(c.damping),
+                       stiffness = as_complex(c.stiffness);
+          for (int j = 0; j < m; ++j)
+            {
+              const auto norm = [&](const Vector &a) {
+                Complex sum = 0;
+                for (unsigned int k = 0; k < n_parts; ++k)
+                  for (unsigned int l = 0; l < n_parts; ++l)
+                    sum += std::conj(a[k]) * a[l] * h[j][k][l];
+                return std::sqrt(std::max(0., sum.real()));
+              };
+              const Complex lambda = pairs[j].lambda;
+              Vector        total;
+              for (unsigned int k = 0; k < n_parts; ++k)
+                total[k] = lambda * lambda * mass[k] + lambda * damping[k] +
+                           stiffness[k];
+              pairs[j].residual =
+                norm(total) / (std::norm(lambda) * norm(mass) +
+                               std::abs(lambda) * norm(damping) +
+                               norm(stiffness));
             }
         }
       std::sort(pairs.begin(), pairs.end(), [](const auto &a, const auto &b) {

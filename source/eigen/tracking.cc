@@ -51,8 +51,8 @@ namespace squeal
 
     std::vector<UnstableRegion>
     find_unstable_regions(
-      const double                                          mu,
-      const std::vector<double> &                           E,
+      const double                                          second,
+      const std::vector<double> &                           first,
       const std::vector<unsigned int> &                     point_index,
       const std::vector<std::vector<std::complex<double>>> &lambdas,
       const std::vector<std::vector<int>> &                 tracks,
@@ -82,12 +82,12 @@ namespace squeal
               auto it = open.find(t);
               if (it == open.end())
                 it = open
-                       .emplace(t, UnstableRegion{mu, E[p], E[p], f, f,
+                       .emplace(t, UnstableRegion{second, first[p], first[p], f, f,
                                                   l.real(), t, -1,
                                                   point_index[p]})
                        .first;
               auto &r = it->second;
-              r.E_max = E[p];
+              r.first_max = first[p];
               r.f_min = std::min(r.f_min, f);
               r.f_max = std::max(r.f_max, f);
               if (l.real() > r.max_re)
@@ -120,7 +120,7 @@ namespace squeal
         close(t);
       std::sort(regions.begin(), regions.end(),
                 [](const auto &a, const auto &b) {
-                  return std::tie(a.f_min, a.E_min) < std::tie(b.f_min, b.E_min);
+                  return std::tie(a.f_min, a.first_min) < std::tie(b.f_min, b.first_min);
                 });
       return regions;
     }

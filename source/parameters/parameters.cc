@@ -8,6 +8,7 @@
 
 #include <squeal/parameters/parameters.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -28,15 +29,6 @@ namespace squeal
         s.precision(12);
         s << x;
         return s.str();
-      }
-
-      std::string
-      list(const std::vector<double> &v)
-      {
-        std::string s;
-        for (unsigned int i = 0; i < v.size(); ++i)
-          s += (i ? ", " : "") + str(v[i]);
-        return s;
       }
 
       const Patterns::Double positive(0., Patterns::Double::max_double_value);
@@ -301,6 +293,10 @@ namespace squeal
                         Patterns::Double(0., Patterns::Double::max_double_value),
                         "Normal interface stiffness per unit area [N/m^3]; "
                         "the thesis' 2.5895e8 N/m over 1e-4 m^2.");
+      prm.declare_entry("Friction coefficient", str(friction_coefficient),
+                        Patterns::Double(0., 10.),
+                        "Coulomb friction coefficient [-] of every sweep "
+                        "point when the sweep does not vary it.");
       prm.declare_entry("Sliding direction", sliding_direction,
                         Patterns::Anything(),
                         "`rotation` (the disc's velocity at the pad centre) "
@@ -322,6 +318,7 @@ namespace squeal
     {
       prm.enter_subsection("Interface");
       normal_stiffness  = prm.get_double("Normal stiffness");
+      friction_coefficient = prm.get_double("Friction coefficient");
       sliding_direction = prm.get("Sliding direction");
       rotation_sense    = prm.get("Rotation sense");
       quadrature        = prm.get("Quadrature");
@@ -373,10 +370,16 @@ namespace squeal
                         Patterns::Double(0., Patterns::Double::max_double_value),
                         "An eigenvalue is unstable when Re(lambda) exceeds "
                         "this [1/s].");
-      prm.declare_entry("Reduced sample moduli", list(reduced_sample_moduli),
-                        Patterns::List(positive, 1, 20),
-                        "Pad moduli [Pa] at which real modes of the symmetric "
-                        "system build the reduced basis.");
+      prm.declare_entry("Reduced samples", std::to_string(reduced_samples),
+                        Patterns::Integer(1, 20),
+                        "Values of each swept structural parameter (pad "
+                        "modulus, interface or spring stiffness, support "
+                        "density) at which real modes of the symmetric system "
+                        "build the reduced basis: the ends of the sweep range "
+                        "and evenly spaced values between (log-spaced for a "
+                        "log sweep); with two structural parameters, every "
+                        "combination. One sample at the nominal point if "
+                        "neither swept parameter is structural.");
       prm.declare_entry("Reduced band factor", str(reduced_band_factor),
                         Patterns::Double(1., 10.),
                         "Modes up to this factor times the maximum frequency "
@@ -402,8 +405,7 @@ namespace squeal
       tolerance          = prm.get_double("Tolerance");
       target_frequency   = prm.get_double("Target frequency");
       unstable_tolerance = prm.get_double("Unstable tolerance");
-      reduced_sample_moduli = Utilities::string_to_double(
-        Utilities::split_string_list(prm.get("Reduced sample moduli")));
+      reduced_samples     = prm.get_integer("Reduced samples");
       reduced_band_factor = prm.get_double("Reduced band factor");
       reduced_enrichment  = prm.get_bool("Reduced enrichment");
       n_check_points      = prm.get_integer("Check points");
@@ -414,32 +416,171 @@ namespace squeal
               str(f_max) + " Hz)");
     }
 
-    std::vector<double>
-    Sweep::E_pad_values() const
+    namespace
     {
-      std::vector<double> v(n_E_pad);
-      for (unsigned int i = 0; i < n_E_pad; ++i)
-        v[i] = (n_E_pad == 1) ?
-                 E_pad_min :
-                 E_pad_min * std::pow(E_pad_max / E_pad_min,
-                                      double(i) / (n_E_pad - 1));
-      return v;
+      double &
+      member(ScalarPoint &p, const std::string &name)
+      {
+        static const std::vector<std::pair<std::string, double ScalarPoint::*>>
+          members = {{"pad modulus", &ScalarPoint::E_pad},
+                     {"friction coefficient", &ScalarPoint::mu},
+                     {"interface stiffness", &ScalarPoint::interface_stiffness},
+                     {"spring stiffness", &ScalarPoint::spring_stiffness},
+                     {"support density", &ScalarPoint::support_density},
+                     {"rayleigh alpha", &ScalarPoint::alpha},
+                     {"rayleigh beta", &ScalarPoint::beta}};
+        for (const auto &[n, m] : members)
+          if (n == name)
+            return p.*m;
+        sweepable_parameter(name); // throws with the allowed names
+        throw std::logic_error("unreachable");
+      }
+
+      std::string
+      sweepable_names()
+      {
+        std::string names;
+        for (const auto &p : sweepable_parameters())
+          names += (names.empty() ? "" : "|") + std::string(p.name);
+        return names;
+      }
+    } // namespace
+
+    double
+    ScalarPoint::get(const std::string &name) const
+    {
+      return member(const_cast<ScalarPoint &>(*this), name);
+    }
+
+    void
+    ScalarPoint::set(const std::string &name, const double value)
+    {
+      member(*this, name) = value;
+    }
+
+    const std::vector<SweepableParameter> &
+    sweepable_parameters()
+    {
+      static const std::vector<SweepableParameter> list = {
+        {"pad modulus", "E_pad", "Pa", 0., true, true},
+        {"friction coefficient", "mu", "", 0., false, false},
+        {"interface stiffness", "k_n", "N_per_m3", 0., false, true},
+        {"spring stiffness", "k_spring", "N_per_m", 0., false, true},
+        {"support density", "rho_support", "kg_per_m3", 0., true, true},
+        {"rayleigh alpha", "alpha", "per_s", 0., false, false},
+        {"rayleigh beta", "beta", "s", 0., false, false}};
+      return list;
+    }
+
+    const SweepableParameter &
+    sweepable_parameter(const std::string &name)
+    {
+      for (const auto &p : sweepable_parameters())
+        if (name == p.name)
+          return p;
+      throw std::runtime_error("unknown sweep parameter '" + name +
+                               "'; allowed: " + sweepable_names());
+    }
+
+    std::string
+    column_name(const std::string &name, const std::string &qualifier)
+    {
+      const auto &p = sweepable_parameter(name);
+      return std::string(p.symbol) + qualifier +
+             (p.unit[0] ? "_" + std::string(p.unit) : std::string());
+    }
+
+    void
+    SweepAxis::parse(const std::string &entry)
+    {
+      const std::string forms =
+        "; allowed: 'log A B N' (N log-spaced values from A to B > 0), "
+        "'linear A B N' or a comma-separated list of values";
+      const auto &info = sweepable_parameter(parameter);
+      std::istringstream words(values_text);
+      std::string        kind;
+      words >> kind;
+      values.clear();
+      log_spaced = kind == "log";
+      if (kind == "log" || kind == "linear")
+        {
+          double       a, b;
+          unsigned int n;
+          std::string  rest;
+          if (!(words >> a >> b >> n) || (words >> rest) || n == 0 ||
+              n > 100000)
+            throw std::runtime_error("invalid parameter: " + entry + " = '" +
+                                     values_text + "'" + forms);
+          if (log_spaced && (a <= 0 || b <= 0))
+            throw std::runtime_error("invalid parameter: " + entry +
+                                     ": a log sweep needs positive ends");
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const double t = n == 1 ? 0. : double(i) / (n - 1);
+              values.push_back(log_spaced ? a * std::pow(b / a, t) :
+                                            a + (b - a) * t);
+            }
+        }
+      else
+        for (const auto &item : Utilities::split_string_list(values_text))
+          {
+            std::size_t used = 0;
+            double      v    = 0;
+            try
+              {
+                v = std::stod(item, &used);
+              }
+            catch (const std::exception &)
+              {
+                used = 0;
+              }
+            if (used == 0 || used != item.size())
+              throw std::runtime_error("invalid parameter: " + entry + ": '" +
+                                       item + "' is not a number" + forms);
+            values.push_back(v);
+          }
+      if (values.empty())
+        throw std::runtime_error("invalid parameter: " + entry +
+                                 " is empty" + forms);
+      for (const double v : values)
+        check(std::isfinite(v) &&
+                (info.low_open ? v > info.lowest : v >= info.lowest),
+              entry + ": " + str(v) + " is out of range for the " +
+                info.name + " (must be " + (info.low_open ? "> " : ">= ") +
+                str(info.lowest) + ")");
+    }
+
+    bool
+    SweepAxis::log_scale() const
+    {
+      const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+      return !values.empty() && *lo > 0 && (log_spaced || *hi > 10 * *lo);
     }
 
     void
     Sweep::declare_parameters(ParameterHandler &prm) const
     {
       prm.enter_subsection("Sweep");
-      prm.declare_entry("Pad modulus min", str(E_pad_min), positive,
-                        "Smallest pad Young's modulus of the sweep [Pa].");
-      prm.declare_entry("Pad modulus max", str(E_pad_max), positive,
-                        "Largest pad Young's modulus of the sweep [Pa].");
-      prm.declare_entry("Pad modulus points", std::to_string(n_E_pad),
-                        Patterns::Integer(1, 10000),
-                        "Log-spaced pad moduli from min to max (1: min only).");
-      prm.declare_entry("Friction coefficients", list(mu),
-                        Patterns::List(Patterns::Double(0., 10.), 1, 1000),
-                        "Coulomb friction coefficients of the sweep [-].");
+      const std::string forms =
+        " Values: 'log A B N' (N log-spaced values from A to B), "
+        "'linear A B N' (N evenly spaced), or a comma-separated list.";
+      prm.declare_entry("First parameter", first.parameter,
+                        Patterns::Selection(sweepable_names()),
+                        "The parameter along which modes are tracked and "
+                        "unstable regions are intervals (the x axis of the "
+                        "plots). Units: pad modulus Pa, interface stiffness "
+                        "N/m^3, spring stiffness N/m, support density kg/m^3, "
+                        "Rayleigh alpha 1/s, Rayleigh beta s.");
+      prm.declare_entry("First values", first.values_text, Patterns::Anything(),
+                        "Values of the first parameter, SI units." + forms);
+      prm.declare_entry("Second parameter", second.parameter,
+                        Patterns::Selection(sweepable_names()),
+                        "The parameter of which each value gets its own "
+                        "tracked sweep of the first (one curve family of the "
+                        "plots).");
+      prm.declare_entry("Second values", second.values_text,
+                        Patterns::Anything(),
+                        "Values of the second parameter, SI units." + forms);
       prm.leave_subsection();
     }
 
@@ -447,14 +588,16 @@ namespace squeal
     Sweep::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Sweep");
-      E_pad_min = prm.get_double("Pad modulus min");
-      E_pad_max = prm.get_double("Pad modulus max");
-      n_E_pad   = prm.get_integer("Pad modulus points");
-      mu        = Utilities::string_to_double(
-        Utilities::split_string_list(prm.get("Friction coefficients")));
+      first.parameter    = prm.get("First parameter");
+      first.values_text  = prm.get("First values");
+      second.parameter   = prm.get("Second parameter");
+      second.values_text = prm.get("Second values");
       prm.leave_subsection();
-      check(E_pad_min <= E_pad_max,
-            "Sweep/Pad modulus min must not exceed Sweep/Pad modulus max");
+      check(first.parameter != second.parameter,
+            "Sweep/First parameter and Sweep/Second parameter are both '" +
+              first.parameter + "'; choose two different parameters");
+      first.parse("Sweep/First values");
+      second.parse("Sweep/Second values");
     }
 
     void
@@ -515,6 +658,35 @@ namespace squeal
       eigensolver.parse_parameters(prm);
       sweep.parse_parameters(prm);
       output.parse_parameters(prm);
+    }
+
+    ScalarPoint
+    AllParameters::nominal_point() const
+    {
+      ScalarPoint p;
+      p.E_pad               = materials.pad.youngs_modulus;
+      p.mu                  = interface.friction_coefficient;
+      p.interface_stiffness = interface.normal_stiffness;
+      p.spring_stiffness    = springs.stiffness;
+      p.support_density     = materials.support.density;
+      p.alpha               = damping.alpha;
+      p.beta                = damping.beta;
+      return p;
+    }
+
+    std::vector<ScalarPoint>
+    AllParameters::sweep_points() const
+    {
+      std::vector<ScalarPoint> points;
+      for (const double s : sweep.second.values)
+        for (const double f : sweep.first.values)
+          {
+            ScalarPoint p = nominal_point();
+            p.set(sweep.second.parameter, s);
+            p.set(sweep.first.parameter, f);
+            points.push_back(p);
+          }
+      return points;
     }
 
     void

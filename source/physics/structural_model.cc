@@ -77,8 +77,9 @@ namespace squeal
       contact::add_interface_sparsity(interface_points, constraints, dsp);
       SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs,
                                                  comm, locally_relevant_dofs);
-      for (auto *m : {&mass, &stiffness_rest, &stiffness_pad,
-                      &interface_normal, &interface_friction})
+      for (auto *m : {&mass, &mass_support, &stiffness_rest, &stiffness_pad,
+                      &stiffness_springs, &interface_normal,
+                      &interface_friction})
         m->reinit(locally_owned_dofs, locally_owned_dofs, dsp, comm);
 
       pcout << "Mesh: " << triangulation.n_active_cells() << " cells, "
@@ -86,26 +87,33 @@ namespace squeal
             << "), " << constraints.n_constraints() << " constrained"
             << std::endl;
 
-      E_ref = prm.materials.pad.youngs_modulus;
+      // Reference values of the scaled parts: the file's, 1 where it is 0.
+      reference = prm.nominal_point();
+      for (double *v : {&reference.E_pad, &reference.support_density,
+                        &reference.spring_stiffness,
+                        &reference.interface_stiffness})
+        if (*v == 0.)
+          *v = 1.;
       assemble_elasticity();
       if (brake)
         {
           add_springs(pcout);
           contact::assemble_interface(interface_points, constraints,
-                                      prm.interface.normal_stiffness,
+                                      reference.interface_stiffness,
                                       prm.interface.sliding_tangent(),
                                       interface_normal, interface_friction);
           interface_normal.compress(VectorOperation::add);
           interface_friction.compress(VectorOperation::add);
         }
 
-      // Constrained rows: K_ii = d, M_ii = d / omega_s^2, all parts else 0.
+      // Constrained rows: K_ii = d, M_ii = d / omega_s^2, all parts else 0;
+      // d from the disc and support elasticity alone, so that it does not
+      // depend on any swept parameter.
       double trace = 0, n_free = 0;
       for (const auto i : locally_owned_dofs)
         if (!constraints.is_constrained(i))
           {
-            trace += stiffness_rest.diag_element(i) +
-                     stiffness_pad.diag_element(i);
+            trace += stiffness_rest.diag_element(i);
             n_free += 1;
           }
       constrained_diagonal = Utilities::MPI::sum(trace, comm) /
@@ -115,7 +123,8 @@ namespace squeal
                                constrained_diagonal, stiffness_rest);
       set_constrained_diagonal(constraints, locally_owned_dofs,
                                constrained_diagonal / (omega_s * omega_s), mass);
-      for (auto *m : {&stiffness_pad, &interface_normal, &interface_friction})
+      for (auto *m : {&mass_support, &stiffness_pad, &stiffness_springs,
+                      &interface_normal, &interface_friction})
         set_constrained_diagonal(constraints, locally_owned_dofs, 0., *m);
     }
 
@@ -138,7 +147,13 @@ namespace squeal
               cell->material_id() == geometry::material::disc ? mat.disc :
               cell->material_id() == geometry::material::pad  ? mat.pad :
                                                                 mat.support;
-            const double E = m.youngs_modulus, nu = m.poisson_ratio;
+            const bool   is_pad = cell->material_id() == geometry::material::pad;
+            const bool   is_support =
+              cell->material_id() == geometry::material::support;
+            const double E = is_pad ? reference.E_pad : m.youngs_modulus;
+            const double nu = m.poisson_ratio;
+            const double density =
+              is_support ? reference.support_density : m.density;
             const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
             const double mu     = E / (2 * (1 + nu));
 
@@ -162,7 +177,7 @@ namespace squeal
                         if (ci == cj)
                           {
                             k += mu * (gi * gj);
-                            cell_m(i, j) += m.density * vi *
+                            cell_m(i, j) += density * vi *
                                             fe_values.shape_value(j, q) * JxW;
                           }
                         cell_k(i, j) += k * JxW;
@@ -171,12 +186,11 @@ namespace squeal
               }
             cell->get_dof_indices(dofs);
             constraints.distribute_local_to_global(
-              cell_k, dofs,
-              cell->material_id() == geometry::material::pad ? stiffness_pad :
-                                                               stiffness_rest);
-            constraints.distribute_local_to_global(cell_m, dofs, mass);
+              cell_k, dofs, is_pad ? stiffness_pad : stiffness_rest);
+            constraints.distribute_local_to_global(
+              cell_m, dofs, is_support ? mass_support : mass);
           }
-      for (auto *m : {&mass, &stiffness_rest, &stiffness_pad})
+      for (auto *m : {&mass, &mass_support, &stiffness_rest, &stiffness_pad})
         m->compress(VectorOperation::add);
     }
 
@@ -185,7 +199,7 @@ namespace squeal
     {
       const auto &g = prm.geometry;
       const auto &s = prm.springs;
-      if (s.n_rows_per_side == 0 || s.stiffness == 0)
+      if (s.n_rows_per_side == 0)
         return;
       // Spring stations: on the two support faces y = +-pad_size/2, rows at
       // x = the centres of n_rows equal strips of the face width, and along
@@ -222,9 +236,10 @@ namespace squeal
         {
           worst = std::max(worst, best[i]);
           if (locally_owned_dofs.is_element(best_dof[i]))
-            stiffness_rest.add(best_dof[i], best_dof[i], s.stiffness);
+            stiffness_springs.add(best_dof[i], best_dof[i],
+                                  reference.spring_stiffness);
         }
-      stiffness_rest.compress(VectorOperation::add);
+      stiffness_springs.compress(VectorOperation::add);
       pcout << "Springs: " << stations.size() << " x " << s.stiffness
             << " N/m in the sliding direction";
       if (worst > 1e-9)
@@ -234,46 +249,60 @@ namespace squeal
       pcout << std::endl;
     }
 
-    namespace
+    MatrixParts::Combination
+    MatrixParts::coefficients(const parameters::ScalarPoint &p) const
     {
-      // result = first + sum factor_i * matrix_i (all on one sparsity pattern)
-      void
-      combine(const PETScMatrix &first,
-              const std::vector<std::pair<double, const PETScMatrix *>> &rest,
-              PETScMatrix &result)
-      {
-        result.reinit(first);
-        result.copy_from(first);
-        for (const auto &[factor, m] : rest)
-          if (factor != 0.)
-            result.add(factor, *m);
-      }
-    } // namespace
-
-    void
-    MatrixParts::stiffness(const double E_pad,
-                           const double mu,
-                           PETScMatrix &K) const
-    {
-      combine(*rest, {{E_pad / E_ref, pad}, {1., normal}, {mu, friction}}, K);
+      const auto &r = reference;
+      Combination c;
+      c.mass       = {{1., p.support_density / r.support_density, 0, 0, 0, 0, 0}};
+      c.structural = {{0, 0, 1., p.E_pad / r.E_pad,
+                       p.spring_stiffness / r.spring_stiffness, 0, 0}};
+      const double kn = p.interface_stiffness / r.interface_stiffness;
+      c.symmetric_stiffness = c.structural;
+      c.symmetric_stiffness[interface_normal] = kn;
+      c.stiffness = c.symmetric_stiffness;
+      c.stiffness[interface_friction] = kn * p.mu;
+      for (unsigned int k = 0; k < n_parts; ++k)
+        c.damping[k] = p.alpha * c.mass[k] + p.beta * c.structural[k];
+      return c;
     }
 
     void
-    MatrixParts::symmetric_stiffness(const double E_pad, PETScMatrix &K) const
+    MatrixParts::combine(const Coefficients &c, PETScMatrix &result) const
     {
-      combine(*rest, {{E_pad / E_ref, pad}, {1., normal}}, K);
+      // all parts share one sparsity pattern: copy one, add the others
+      result.reinit(*matrix[0]);
+      result.copy_from(*matrix[0]);
+      result *= c[0];
+      for (unsigned int k = 1; k < n_parts; ++k)
+        if (c[k] != 0.)
+          result.add(c[k], *matrix[k]);
     }
 
     void
-    MatrixParts::damping(const double E_pad,
-                         const double alpha,
-                         const double beta,
-                         PETScMatrix &C) const
+    MatrixParts::mass(const parameters::ScalarPoint &p, PETScMatrix &M) const
     {
-      combine(*mass, {}, C);
-      C *= alpha;
-      C.add(beta, *rest);
-      C.add(beta * E_pad / E_ref, *pad);
+      combine(coefficients(p).mass, M);
+    }
+
+    void
+    MatrixParts::stiffness(const parameters::ScalarPoint &p,
+                           PETScMatrix &                  K) const
+    {
+      combine(coefficients(p).stiffness, K);
+    }
+
+    void
+    MatrixParts::symmetric_stiffness(const parameters::ScalarPoint &p,
+                                     PETScMatrix &                  K) const
+    {
+      combine(coefficients(p).symmetric_stiffness, K);
+    }
+
+    void
+    MatrixParts::damping(const parameters::ScalarPoint &p, PETScMatrix &C) const
+    {
+      combine(coefficients(p).damping, C);
     }
   } // namespace physics
 } // namespace squeal

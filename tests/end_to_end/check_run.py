@@ -1,7 +1,13 @@
 #!/usr/bin/python3
-"""End-to-end check of build/squeal on coarse_sweep.prm.
+"""End-to-end check of build/squeal on coarse_sweep.prm (or other_pair.prm).
 
-usage: check_run.py SQUEAL PRM WORKDIR
+usage: check_run.py SQUEAL PRM WORKDIR [--other-pair]
+
+With --other-pair (other_pair.prm: spring stiffness against support density)
+it runs serially only and checks the extra columns of the swept parameters,
+the headers named after them, the values of the log-spaced axis, the reduced
+solver against the full one at the run's check points (0.1 % in frequency,
+2 % of |Re| + 1 in growth rate, from check_full.csv) and the plots.
 
 Runs the program serially and with `mpirun -np 2`, then checks:
 - the output files of the CEA contract exist, with the contract's header;
@@ -25,6 +31,7 @@ import subprocess
 import sys
 
 squeal, prm, work = sys.argv[1:4]
+other_pair = sys.argv[4:] == ["--other-pair"]
 here = os.path.dirname(os.path.abspath(__file__))
 plot = os.path.join(here, "..", "..", "scripts", "plot_cea.py")
 HEADER = "point,mu,E_pad_Pa,mode,re_per_s,freq_Hz,zeta,unstable,track"
@@ -46,10 +53,10 @@ def run(cmd, out):
     return r.stdout
 
 
-def rows(out):
+def rows(out, header_expected=HEADER):
     with open(os.path.join(out, "eigenvalues.csv")) as f:
         header = f.readline().strip()
-        if header != HEADER:
+        if header != header_expected:
             fail(f"eigenvalues.csv header is '{header}'")
     with open(os.path.join(out, "eigenvalues.csv")) as f:
         return list(csv.DictReader(f))
@@ -58,7 +65,52 @@ def rows(out):
 # OpenMPI refuses to start as root unless told (CI runs as root).
 os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
 os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+def plots(out):
+    r = subprocess.run(["/usr/bin/python3", plot, out], capture_output=True,
+                       text=True)
+    for png in ("frequency_vs_modulus.png", "locus.png", "stability_map.png"):
+        if r.returncode != 0 or not os.path.exists(os.path.join(out, png)):
+            fail(f"plot_cea.py did not make {png}: {r.stderr}")
+    print("plots: ok")
+
+
+def check_other_pair():
+    out = os.path.join(work, "other_pair")
+    run([squeal], out)
+    ev = rows(out, HEADER + ",k_spring_N_per_m,rho_support_kg_per_m3")
+    springs = sorted({float(r["k_spring_N_per_m"]) for r in ev})
+    expected = [2e6 * (5e7 / 2e6) ** (i / 4) for i in range(5)]
+    if len(springs) != 5 or any(abs(a - b) > 1e-9 * b
+                                for a, b in zip(springs, expected)):
+        fail(f"spring stiffness values {springs}, expected {expected}")
+    if {float(r["rho_support_kg_per_m3"]) for r in ev} != {7800.0, 76500.0}:
+        fail("support density column")
+    if {(float(r["mu"]), float(r["E_pad_Pa"])) for r in ev} != {(0.5, 25e9)}:
+        fail("mu and E_pad must stay at their nominal values")
+    with open(os.path.join(out, "unstable_regions.csv")) as f:
+        header = f.readline().strip()
+    want = ("rho_support_kg_per_m3,k_spring_min_N_per_m,k_spring_max_N_per_m,"
+            "freq_min_Hz,freq_max_Hz,max_re_per_s,track")
+    if header != want:
+        fail(f"unstable_regions.csv header '{header}'")
+    with open(os.path.join(out, "check_full.csv")) as f:
+        check = list(csv.DictReader(f))
+    if len({r["point"] for r in check}) != 2:
+        fail("check_full.csv must hold the run's 2 check points")
+    df = max(float(r["freq_rel_error"]) for r in check)
+    dre = max(float(r["re_error_per_abs_re_plus_1"]) for r in check)
+    if df > 1e-3 or dre > 2e-2:
+        fail(f"reduced against full: {df:.3g} in frequency, {dre:.3g} in "
+             "growth rate")
+    print(f"other pair: {len(ev)} eigenvalues, reduced against full "
+          f"{df:.2g} / {dre:.2g}: ok")
+    plots(out)
+
+
 os.makedirs(work, exist_ok=True)
+if other_pair:
+    check_other_pair()
+    sys.exit(0)
 serial = os.path.join(work, "serial")
 log = run([squeal], serial)
 for name in ("eigenvalues.csv", "unstable_regions.csv", "check_full.csv",
@@ -107,8 +159,4 @@ if worst_f > 1e-3 or worst_re > 2e-2:
 print("mpirun -np 2 reproduces the serial eigenvalues within the reduced "
       "solver's accuracy: ok")
 
-r = subprocess.run(["/usr/bin/python3", plot, serial], capture_output=True, text=True)
-for png in ("frequency_vs_modulus.png", "locus.png", "stability_map.png"):
-    if r.returncode != 0 or not os.path.exists(os.path.join(serial, png)):
-        fail(f"plot_cea.py did not make {png}: {r.stderr}")
-print("plots: ok")
+plots(serial)

@@ -32,8 +32,7 @@ namespace squeal
     struct ModeRecord
     {
       unsigned int         point;
-      double               mu;
-      double               E_pad;    ///< Pa
+      parameters::ScalarPoint values; ///< the sweep point's parameters
       unsigned int         mode;     ///< index within the point, by frequency
       std::complex<double> lambda;   ///< 1/s
       double               residual; ///< relative, on the full model
@@ -101,9 +100,17 @@ namespace squeal
       physics::StructuralModel model;
       eigen::ReducedModel      reduced;
 
+      /// The reduced basis' sample points: the ends of each swept
+      /// structural parameter's range and evenly spaced values between.
+      std::vector<parameters::ScalarPoint>
+      basis_samples() const;
+      /// "E_pad = 1e10 Pa, mu = 0.2" for a point, the swept ones only.
+      std::string
+      describe(const parameters::ScalarPoint &p) const;
+
       struct Point
       {
-        double                                mu, E_pad;
+        parameters::ScalarPoint               values;
         std::vector<std::complex<double>>     lambda;
         std::vector<double>                   residual;
         std::vector<Eigen::VectorXcd>         q; ///< reduced coordinates

@@ -6,13 +6,15 @@
  * Reduced-order complex eigenvalue analysis for parameter sweeps.
  *
  * Basis (verification.md A6): the real modes of the symmetric system
- * (K_rest + s K_pad + K_n, M) up to band_factor * f_max at a few sample pad
- * moduli s, enriched with the static responses K_s^{-1} K_t Phi_s to the
- * friction forces of those modes, made M-orthonormal by an eigen-decomposition
+ * (K(p) without friction, M(p)) up to band_factor * f_max at a few sample
+ * points p of the swept structural parameters, enriched with the static
+ * responses K(p)^{-1} K_t Phi_p to the friction forces of those modes, made
+ * M-orthonormal (M at the reference point) by an eigen-decomposition
  * of the Gram matrix of the vectors scaled to unit M-norm (directions with
  * relative M-norm^2 below 1e-10 dropped).
- * All matrix parts are projected once; a sweep point is then the dense
- * 2r x 2r companion eigenproblem of (lambda^2 I + lambda C_r + K_r) q = 0
+ * All matrix parts of physics::MatrixParts are projected once; a sweep point
+ * is then the dense 2r x 2r companion eigenproblem of
+ * (lambda^2 M_r + lambda C_r + K_r) q = 0
  * (LAPACK dgeev). The residual of every reduced eigenpair on the full model,
  * ||(lambda^2 M + lambda C + K) V q|| / (|lambda|^2 ||M V q|| + |lambda|
  * ||C V q|| + ||K V q||), is evaluated exactly from precomputed Gram matrices
@@ -48,13 +50,14 @@ namespace squeal
     public:
       /**
        * Builds the basis and projects every matrix part.
-       * @param sample_moduli pad moduli of the basis samples [Pa]
+       * @param samples the parameter points of the basis samples (only the
+       *   structural parameters matter: pad modulus, stiffnesses, density)
        * @param band f_max * band_factor is the highest basis mode [Hz]
        * @throws std::runtime_error if an eigensolve or factorisation fails.
        */
       void
       build(const physics::MatrixParts &    model,
-            const std::vector<double> &     sample_moduli,
+            const std::vector<parameters::ScalarPoint> &samples,
             const BandOptions &             band,
             const double                    band_factor,
             const bool                      enrichment,
@@ -80,17 +83,14 @@ namespace squeal
              const bool                      with_residuals = true);
 
       /**
-       * Eigenpairs with Im lambda > 0 and frequency in [f_min, f_max] at pad
-       * modulus @p E_pad [Pa] and friction coefficient @p mu, sorted by
-       * frequency; Rayleigh damping alpha [1/s], beta [s].
+       * Eigenpairs with Im lambda > 0 and frequency in [f_min, f_max] [Hz]
+       * at the parameter point @p p, sorted by frequency.
+       * @throws std::runtime_error if LAPACK fails.
        */
       std::vector<ReducedEigenPair>
-      solve(const double E_pad,
-            const double mu,
-            const double alpha,
-            const double beta,
-            const double f_min,
-            const double f_max) const;
+      solve(const parameters::ScalarPoint &p,
+            const double                   f_min,
+            const double                   f_max) const;
 
       /** The full-model vector V q, real and imaginary parts (length n). */
       void
@@ -107,7 +107,7 @@ namespace squeal
       unsigned int
       size() const
       {
-        return Mr.rows();
+        return V.cols();
       }
 
     private:
@@ -116,18 +116,18 @@ namespace squeal
               Eigen::MatrixXd &           B,
               const bool                  with_residuals);
 
-      enum Part
-      {
-        mass = 0,
-        rest,
-        pad,
-        normal,
-        friction,
-        n_parts
-      };
-      double                               E_ref = 1.;
+      /// The mass matrix at the reference point, for M-orthonormality.
+      void
+      make_reference_mass(const physics::MatrixParts &model);
+      Eigen::MatrixXd
+      reference_mass_times(const Eigen::MatrixXd &X) const;
+
+      static constexpr unsigned int n_parts = physics::MatrixParts::n_parts;
+      physics::MatrixParts                 parts; ///< non-owning
+      PETScMatrix                          M_ref; ///< M at the reference
+      std::array<bool, n_parts>            active{}; ///< part is non-zero
+      bool has_residuals = false; ///< G is complete for the current basis
       Eigen::MatrixXd                      V; ///< n_local x r, M-orthonormal
-      Eigen::MatrixXd                      Mr;
       std::array<Eigen::MatrixXd, n_parts> Ar; ///< V^T A_k V
       std::array<Eigen::MatrixXd, n_parts> W;  ///< A_k V, local rows
       std::array<std::array<Eigen::MatrixXd, n_parts>, n_parts>
@@ -138,8 +138,8 @@ namespace squeal
 
     /**
      * The full solver: every eigenpair of (lambda^2 M + lambda C + K) phi = 0
-     * with frequency in [f_min, f_max] at (E_pad [Pa], mu), Rayleigh alpha
-     * [1/s], beta [s]. The undamped friction-coupled modes up to 1.5 f_max
+     * with frequency in [f_min, f_max] at the parameter point @p p. The
+     * undamped friction-coupled modes up to 1.5 f_max
      * (solve_undamped, GNHEP) span a first subspace on which the damped
      * problem is solved; then, as in a block Davidson method, the residuals
      * of the eigenpairs, preconditioned by the real factorisation of
@@ -149,12 +149,9 @@ namespace squeal
      * @throws std::runtime_error if an eigensolve fails.
      */
     std::vector<EigenPair>
-    solve_full(const physics::MatrixParts &model,
-               const double                E_pad,
-               const double                mu,
-               const double                alpha,
-               const double                beta,
-               const BandOptions &         band,
+    solve_full(const physics::MatrixParts &   model,
+               const parameters::ScalarPoint &p,
+               const BandOptions &            band,
                dealii::ConditionalOStream &pcout);
   } // namespace eigen
 } // namespace squeal

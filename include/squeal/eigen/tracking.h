@@ -35,11 +35,15 @@ namespace squeal
                 int &                                                 next_id,
                 const double weight = 10.);
 
-    /** One interval of the swept parameter over which a track is unstable. */
+    /**
+     * One interval of the first swept parameter (for example the pad
+     * modulus, Pa) over which a track is unstable, at one value of the second
+     * (for example mu); units are those of the swept parameters.
+     */
     struct UnstableRegion
     {
-      double mu;
-      double E_min, E_max;       ///< Pa
+      double second;               ///< value of the second parameter
+      double first_min, first_max; ///< the interval of the first parameter
       double f_min, f_max;       ///< Hz
       double max_re;             ///< 1/s
       int    track;
@@ -48,16 +52,18 @@ namespace squeal
     };
 
     /**
-     * Unstable regions of one friction coefficient's sweep: maximal runs of
-     * consecutive points where a track has Re lambda > tolerance. The
-     * partner is the stable mode nearest in frequency at the point of
-     * largest growth (the other member of the lock-in).
-     * @param E swept moduli [Pa]; @param point_index sweep point ids
+     * Unstable regions of one sweep of the first parameter at a fixed value
+     * @p second of the second: maximal runs of consecutive points where a
+     * track has Re lambda > tolerance [1/s]. The partner is the stable mode
+     * nearest in frequency at the point of largest growth (the other member
+     * of the lock-in).
+     * @param first values of the first parameter per point (ascending or
+     *   descending); @param point_index sweep point ids
      */
     std::vector<UnstableRegion>
     find_unstable_regions(
-      const double                                          mu,
-      const std::vector<double> &                           E,
+      const double                                          second,
+      const std::vector<double> &                           first,
       const std::vector<unsigned int> &                     point_index,
       const std::vector<std::vector<std::complex<double>>> &lambdas,
       const std::vector<std::vector<int>> &                 tracks,

@@ -105,6 +105,7 @@ namespace squeal
     struct Interface
     {
       double      normal_stiffness = 2.5895e12; ///< N/m^3 per unit area
+      double      friction_coefficient = 0.3; ///< when not swept [-]
       std::string sliding_direction = "rotation"; ///< `rotation` or "tx, ty"
       std::string rotation_sense    = "counterclockwise";
       std::string quadrature        = "mortar"; ///< `mortar` or `nodal`
@@ -124,7 +125,8 @@ namespace squeal
       double       tolerance = 1e-10;
       double       target_frequency = 100.; ///< Hz, real shift -2 pi f
       double       unstable_tolerance = 1e-3; ///< 1/s on Re(lambda)
-      std::vector<double> reduced_sample_moduli{1e9, 1e10, 1e11}; ///< Pa
+      /// Sample values per swept structural parameter for the reduced basis.
+      unsigned int reduced_samples = 3;
       double       reduced_band_factor = 1.5;
       bool         reduced_enrichment = true;
       unsigned int n_check_points = 2;
@@ -132,15 +134,96 @@ namespace squeal
       void parse_parameters(ParameterHandler &prm);
     };
 
-    /** The two swept parameters: pad modulus (log-spaced) and mu (a list). */
+    /**
+     * The values of every scalar parameter a sweep can vary, at one sweep
+     * point. The stiffness, mass and damping matrices depend on them
+     * affinely (see physics::MatrixParts), which is what lets the reduced
+     * solver sweep any of them without re-assembly.
+     */
+    struct ScalarPoint
+    {
+      double E_pad               = 25e9;      ///< pad Young's modulus [Pa]
+      double mu                  = 0.;        ///< friction coefficient [-]
+      double interface_stiffness = 2.5895e12; ///< normal, per area [N/m^3]
+      double spring_stiffness    = 8.422e6;   ///< per support spring [N/m]
+      double support_density     = 76500.;    ///< [kg/m^3]
+      double alpha               = 0.;        ///< Rayleigh, mass [1/s]
+      double beta                = 0.;        ///< Rayleigh, stiffness [s]
+
+      /**
+       * The value of the parameter called @p name (one of
+       * sweepable_parameters()). @throws std::runtime_error on another name.
+       */
+      double get(const std::string &name) const;
+      /** Sets the parameter called @p name. @throws as get(). */
+      void set(const std::string &name, const double value);
+    };
+
+    /** A parameter a sweep can vary, with its names in the output. */
+    struct SweepableParameter
+    {
+      const char *name;   ///< as written in the `.prm` file
+      const char *symbol; ///< CSV column stem, e.g. `E_pad`
+      const char *unit;   ///< CSV unit suffix, e.g. `Pa` ("" if none)
+      double      lowest; ///< smallest allowed value
+      bool        low_open;   ///< lowest itself excluded
+      bool        structural; ///< changes M or the structural K
+    };
+
+    /**
+     * Every sweepable parameter: pad modulus, friction coefficient,
+     * interface stiffness, spring stiffness, support density, Rayleigh alpha,
+     * Rayleigh beta.
+     */
+    const std::vector<SweepableParameter> &
+    sweepable_parameters();
+
+    /**
+     * The entry of sweepable_parameters() called @p name.
+     * @throws std::runtime_error listing the allowed names otherwise.
+     */
+    const SweepableParameter &
+    sweepable_parameter(const std::string &name);
+
+    /**
+     * CSV column name of a sweepable parameter, with @p qualifier inserted
+     * before the unit: ("pad modulus", "_min") gives `E_pad_min_Pa`.
+     */
+    std::string
+    column_name(const std::string &name, const std::string &qualifier = "");
+
+    /** One axis of a sweep: which parameter and its values. */
+    struct SweepAxis
+    {
+      std::string parameter;    ///< a name of sweepable_parameters()
+      std::string values_text;  ///< `log A B N`, `linear A B N` or a list
+      bool        log_spaced = false; ///< values came from `log A B N`
+      std::vector<double> values;     ///< parsed from values_text
+
+      /**
+       * Parses values_text. @throws std::runtime_error naming @p entry and
+       * the allowed forms if it is malformed or a value is out of range.
+       */
+      void parse(const std::string &entry);
+
+      /**
+       * Whether the axis is best seen on a log scale: log-spaced, or all
+       * values positive and spanning more than a factor of 10.
+       */
+      bool log_scale() const;
+    };
+
+    /**
+     * A two-parameter sweep. Modes are tracked along the first parameter for
+     * each value of the second, and unstable regions are intervals of the
+     * first. Defaults: pad modulus, 41 log-spaced values 1-100 GPa, against
+     * the friction coefficients of the thesis.
+     */
     struct Sweep
     {
-      double              E_pad_min = 1e9;  ///< Pa
-      double              E_pad_max = 1e11; ///< Pa
-      unsigned int        n_E_pad   = 41;
-      std::vector<double> mu{0.01, 0.1, 0.2, 0.3, 0.5, 0.7};
-      /// Moduli of the sweep, log-spaced from min to max (Pa).
-      std::vector<double> E_pad_values() const;
+      SweepAxis first{"pad modulus", "log 1e9 1e11 41", true, {}};
+      SweepAxis second{"friction coefficient", "0.01, 0.1, 0.2, 0.3, 0.5, 0.7",
+                       false, {}};
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };
@@ -184,6 +267,17 @@ namespace squeal
        * a malformed file, an unknown entry, or a value outside its range.
        */
       void read(ParameterHandler &prm, const std::string &filename);
+
+      /** The scalar parameters as set in the file (no sweep applied). */
+      ScalarPoint
+      nominal_point() const;
+
+      /**
+       * Every sweep point: the nominal point with the first parameter set to
+       * each of its values, for each value of the second (second outermost).
+       */
+      std::vector<ScalarPoint>
+      sweep_points() const;
     };
   } // namespace parameters
 } // namespace squeal

@@ -5,9 +5,8 @@
  * @file
  * The linear structural model of a scene: mesh, FE space, constraints and
  * the matrices of the equations of motion M u'' + C u' + K u = 0, assembled
- * once and stored in parts so that a sweep only recombines them:
- *   K(E_pad, mu) = K_rest + (E_pad / E_ref) K_pad + K_n + mu K_t,
- *   C(E_pad)     = alpha M + beta (K_rest + (E_pad / E_ref) K_pad).
+ * once and stored in parts so that a sweep over any of the scalar parameters
+ * of parameters::ScalarPoint only recombines them (see MatrixParts).
  * Matrices are PETSc MPI matrices on a parallel::shared::Triangulation, so
  * the same code runs serially and under mpirun.
  */
@@ -24,6 +23,7 @@
 
 #include <squeal/parameters/parameters.h>
 
+#include <array>
 #include <memory>
 
 namespace squeal
@@ -34,33 +34,71 @@ namespace squeal
     using PETScVector = dealii::PETScWrappers::MPI::Vector;
 
     /**
-     * The matrix parts of a linear model (n x n each; M in kg, the K parts
-     * in N/m) and their combinations
-     *   K(E_pad, mu) = K_rest + (E_pad / E_ref) K_pad + K_n + mu K_t,
-     *   C(E_pad)     = alpha M + beta (K_rest + (E_pad / E_ref) K_pad).
-     * All parts must share one sparsity pattern. Non-owning.
+     * The matrix parts of a linear model (n x n each; mass parts in kg,
+     * stiffness parts in N/m), each assembled at a reference value of the
+     * parameter that scales it, and their affine combinations at a sweep
+     * point p (parameters::ScalarPoint):
+     *   M(p) = M_fixed + (rho_s / rho_ref) M_support,
+     *   K_s(p) = K_rest + (E_pad / E_ref) K_pad + (k / k_ref) K_springs,
+     *   K(p) = K_s(p) + (k_n / k_n_ref) (K_n + mu K_t),
+     *   C(p) = alpha M(p) + beta K_s(p)    (Rayleigh damping of the bodies).
+     * K_t is the friction part per unit mu (thesis eq. 3-1). All parts must
+     * share one sparsity pattern. Non-owning.
      */
     struct MatrixParts
     {
-      const PETScMatrix *mass;
-      const PETScMatrix *rest;
-      const PETScMatrix *pad;
-      const PETScMatrix *normal;
-      const PETScMatrix *friction;
-      double             E_ref; ///< Pa
+      /** The parts, in the order of the coefficient arrays. */
+      enum Part
+      {
+        mass_fixed,         ///< disc and pad (and constrained rows) [kg]
+        mass_support,       ///< support at rho_ref [kg]
+        stiffness_rest,     ///< disc and support elasticity [N/m]
+        stiffness_pad,      ///< pad elasticity at E_ref [N/m]
+        stiffness_springs,  ///< support springs at k_ref [N/m]
+        interface_normal,   ///< K_n at k_n_ref [N/m]
+        interface_friction, ///< K_t per unit mu at k_n_ref [N/m]
+        n_parts
+      };
+      /// One coefficient per part.
+      using Coefficients = std::array<double, n_parts>;
 
-      /** K(E_pad, mu) into @p K (re-initialised). E_pad in Pa. */
+      /** The coefficients of M, K_s, K and C at one point. */
+      struct Combination
+      {
+        Coefficients mass, structural, stiffness, symmetric_stiffness, damping;
+      };
+
+      std::array<const PETScMatrix *, n_parts> matrix;
+      /// The parameter values at which the parts were assembled; only
+      /// E_pad, support_density, spring_stiffness, interface_stiffness are
+      /// used, and none may be zero.
+      parameters::ScalarPoint reference;
+
+      /** Coefficients of every combination at @p p. */
+      Combination
+      coefficients(const parameters::ScalarPoint &p) const;
+      /** sum_k c[k] part_k into @p result (re-initialised). */
       void
-      stiffness(const double E_pad, const double mu, PETScMatrix &K) const;
-      /** K_rest + (E_pad/E_ref) K_pad + K_n (no friction; symmetric). */
+      combine(const Coefficients &c, PETScMatrix &result) const;
+      /** M(p). */
       void
-      symmetric_stiffness(const double E_pad, PETScMatrix &K) const;
-      /** C(E_pad) with alpha [1/s], beta [s]. */
+      mass(const parameters::ScalarPoint &p, PETScMatrix &M) const;
+      /** K(p), non-symmetric when mu != 0. */
       void
-      damping(const double E_pad,
-              const double alpha,
-              const double beta,
-              PETScMatrix &C) const;
+      stiffness(const parameters::ScalarPoint &p, PETScMatrix &K) const;
+      /** K(p) without the friction part (symmetric). */
+      void
+      symmetric_stiffness(const parameters::ScalarPoint &p,
+                          PETScMatrix &                  K) const;
+      /** C(p). */
+      void
+      damping(const parameters::ScalarPoint &p, PETScMatrix &C) const;
+      /** The friction part K_t (per unit mu), for the basis enrichment. */
+      const PETScMatrix &
+      friction() const
+      {
+        return *matrix[interface_friction];
+      }
     };
 
     /**
@@ -77,9 +115,10 @@ namespace squeal
       /**
        * Builds the mesh, the DoFs, the constraints (clamped inner face,
        * hanging nodes) and the common sparsity pattern of all matrix parts,
-       * then assembles M, K_rest (with the springs), K_pad and the interface
-       * parts K_n, K_t. Constrained rows get K_ii = d (the mean diagonal of
-       * K) and M_ii = d / (2 pi 1e3 f_max)^2, which puts their spurious
+       * then assembles every part of MatrixParts at the nominal parameter
+       * values of the file (a zero one is replaced by 1 in its unit).
+       * Constrained rows get K_ii = d (the mean diagonal of K_rest over the
+       * free rows) and M_ii = d / (2 pi 1e3 f_max)^2, which puts their spurious
        * eigenvalues a thousand times above the band (deal.II step-36).
        */
       void
@@ -89,8 +128,9 @@ namespace squeal
       MatrixParts
       parts() const
       {
-        return {&mass, &stiffness_rest, &stiffness_pad, &interface_normal,
-                &interface_friction, E_ref};
+        return {{{&mass, &mass_support, &stiffness_rest, &stiffness_pad,
+                  &stiffness_springs, &interface_normal, &interface_friction}},
+                reference};
       }
 
       /** Number of degrees of freedom. */
@@ -111,13 +151,16 @@ namespace squeal
       dealii::IndexSet                           locally_owned_dofs;
       dealii::IndexSet                           locally_relevant_dofs;
 
-      PETScMatrix mass;               ///< M [kg]
-      PETScMatrix stiffness_rest;     ///< disc, support, springs [N/m]
+      PETScMatrix mass;               ///< disc and pad (M_fixed) [kg]
+      PETScMatrix mass_support;       ///< support at reference density [kg]
+      PETScMatrix stiffness_rest;     ///< disc, support [N/m]
       PETScMatrix stiffness_pad;      ///< pad at E_ref [N/m]
+      PETScMatrix stiffness_springs;  ///< springs at k_ref [N/m]
       PETScMatrix interface_normal;   ///< K_n [N/m]
       PETScMatrix interface_friction; ///< K_t per unit mu [N/m]
 
-      double E_ref = 1.;              ///< pad modulus of stiffness_pad [Pa]
+      /// Parameter values of the assembled parts (see MatrixParts).
+      parameters::ScalarPoint reference;
       double constrained_diagonal = 1.; ///< d above [N/m]
 
     private:
