@@ -7,4 +7,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$here/build"
 # OpenMPI refuses to start as root unless told; CI runs as root.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# Two tests run at once (and some on 2 MPI ranks): one BLAS thread each, so
+# the 2 cores are not oversubscribed.
+export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 ctest -LE long --output-on-failure -j2 "$@"

@@ -124,7 +124,9 @@ namespace squeal
           TimerOutput::Scope t(timer, "reduced basis");
           pcout << "Building the reduced basis" << std::endl;
           reduced.build(model.parts(), basis_samples(), band,
-                        es.reduced_band_factor, es.reduced_enrichment, pcout);
+                        es.reduced_band_factor,
+                        es.reduced_enrichment ? es.reduced_enrichment_depth : 0,
+                        pcout);
         }
 
       const auto         sweep    = prm.sweep_points();
@@ -245,8 +247,10 @@ namespace squeal
         }
       pcout << "Checking the reduced solver against the full solver at "
             << chosen.size() << " points" << std::endl;
+      // about as many modes up to 1.5 f_max as each basis sample had
       eigen::BandOptions band{es.f_min, es.f_max, es.target_frequency,
-                              es.tolerance, 40};
+                              es.tolerance,
+                              std::max(40u, 5 * reduced.sample_mode_count() / 4 + 10)};
       double max_df = 0, max_dre = 0;
       unsigned int missed = 0;
       for (const unsigned int p : chosen)
@@ -364,19 +368,22 @@ namespace squeal
       const auto &second_info =
         parameters::sweepable_parameter(prm.sweep.second.parameter);
       for (const auto &r : regions)
-        pcout << "  " << second_info.symbol << " = " << r.second << ": "
+        {
+          std::ostringstream log10;
+          if (prm.sweep.first.log_scale())
+            log10 << std::setprecision(4) << " (log10 " << std::log10(r.first_min)
+                  << " - " << std::log10(r.first_max) << ")";
+          pcout << "  " << second_info.symbol << " = " << r.second << ": "
               << first_info.symbol << " " << std::setprecision(4)
               << r.first_min << " - " << r.first_max << ' ' << first_info.unit
-              << (r.first_min > 0 ?
-                    " (log10 " + std::to_string(std::log10(r.first_min)).substr(0, 6) +
-                      " - " + std::to_string(std::log10(r.first_max)).substr(0, 6) + ")" :
-                    std::string())
+              << log10.str()
               << ", " << std::setprecision(5) << r.f_min << " - " << r.f_max
               << " Hz, max Re lambda " << r.max_re << " 1/s, track " << r.track
               << (r.partner_track >= 0 ?
                     " locked in with track " + std::to_string(r.partner_track) :
                     std::string())
               << std::setprecision(6) << std::endl;
+        }
     }
 
     void

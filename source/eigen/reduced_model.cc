@@ -117,7 +117,7 @@ namespace squeal
                         const std::vector<parameters::ScalarPoint> &samples,
                         const BandOptions &                         band,
                         const double                                band_factor,
-                        const bool                                  enrichment,
+                        const unsigned int enrichment_depth,
                         ConditionalOStream &                        pcout)
     {
       make_reference_mass(model);
@@ -139,21 +139,40 @@ namespace squeal
             solve_undamped(M, K, sample_band, band_factor, true, pcout);
           // the next sample has about as many modes: ask for them at once
           sample_band.initial_nev = modes.size() + modes.size() / 5 + 10;
+          largest_sample = std::max<unsigned int>(largest_sample, modes.size());
           std::unique_ptr<DirectSolver> solver;
-          if (enrichment)
+          if (enrichment_depth > 0)
             solver = std::make_unique<DirectSolver>(K);
           PETScVector force(owned, comm), response(owned, comm);
           for (const auto &mode : modes)
             {
               columns.push_back(local_part(mode.re, owned));
-              if (enrichment)
+              if (enrichment_depth > 0)
                 {
-                  model.friction().vmult(force, mode.re);
-                  if (force.l2_norm() > 0)
+                  // Rayleigh damping beta K_s is not proportional to
+                  // K_s + K_n: the static response to the interface forces
+                  // K^-1 K_n phi corrects the damped shapes.
+                  model.matrix[physics::MatrixParts::interface_normal]->vmult(
+                    force, mode.re);
+                  const double norm = force.l2_norm();
+                  if (norm > 0)
                     {
+                      force /= norm;
                       solver->solve(force, response);
                       columns.push_back(local_part(response, owned));
                     }
+                }
+              PETScVector x = mode.re;
+              for (unsigned int level = 0; level < enrichment_depth; ++level)
+                {
+                  model.friction().vmult(force, x);
+                  const double norm = force.l2_norm();
+                  if (norm == 0)
+                    break;
+                  force /= norm; // scale is irrelevant; keep it O(1)
+                  solver->solve(force, response);
+                  columns.push_back(local_part(response, owned));
+                  x = response;
                 }
             }
         }
@@ -252,20 +271,19 @@ namespace squeal
                           Eigen::MatrixXd &           B,
                           const bool                  with_residuals)
     {
+      // Orthonormalise first, so that the sparse products act on the kept
+      // directions only (often a third of the vectors).
+      {
+        Eigen::MatrixXd MB   = reference_mass_times(B);
+        Eigen::MatrixXd gram = B.transpose() * MB;
+        sum_over_ranks(gram, comm);
+        V = B * orthonormalising_transform(gram);
+      }
       for (unsigned int k = 0; k < n_parts; ++k)
         if (active[k])
-          W[k] = multiply(*model.matrix[k], B);
+          W[k] = multiply(*model.matrix[k], V);
         else
           W[k].resize(0, 0);
-
-      Eigen::MatrixXd MB   = reference_mass_times(B);
-      Eigen::MatrixXd gram = B.transpose() * MB;
-      sum_over_ranks(gram, comm);
-      const Eigen::MatrixXd T = orthonormalising_transform(gram);
-      V = B * T;
-      for (auto &w : W)
-        if (w.size() > 0)
-          w = (w * T).eval();
 
       for (unsigned int k = 0; k < n_parts; ++k)
         {

@@ -8,7 +8,10 @@
  * Basis (verification.md A6): the real modes of the symmetric system
  * (K(p) without friction, M(p)) up to band_factor * f_max at a few sample
  * points p of the swept structural parameters, enriched with the static
- * responses K(p)^{-1} K_t Phi_p to the friction forces of those modes, made
+ * responses K(p)^{-1} K_t Phi_p to the friction forces of those modes and
+ * K(p)^{-1} K_n Phi_p to their interface forces (the Rayleigh damping
+ * beta K_s is not proportional to K_s + K_n, so the damped shapes need it),
+ * made
  * M-orthonormal (M at the reference point) by an eigen-decomposition
  * of the Gram matrix of the vectors scaled to unit M-norm (directions with
  * relative M-norm^2 below 1e-10 dropped).
@@ -53,6 +56,11 @@ namespace squeal
        * @param samples the parameter points of the basis samples (only the
        *   structural parameters matter: pad modulus, stiffnesses, density)
        * @param band f_max * band_factor is the highest basis mode [Hz]
+       * @param enrichment_depth number of friction enrichment levels per
+       *   mode phi: (K^-1 K_t)^l phi for l = 1..depth (0: real modes only;
+       *   1: the static response to the friction forces of verification A6;
+       *   with depth >= 1 the response K^-1 K_n phi to the interface forces
+       *   is added too)
        * @throws std::runtime_error if an eigensolve or factorisation fails.
        */
       void
@@ -60,7 +68,7 @@ namespace squeal
             const std::vector<parameters::ScalarPoint> &samples,
             const BandOptions &             band,
             const double                    band_factor,
-            const bool                      enrichment,
+            const unsigned int              enrichment_depth,
             dealii::ConditionalOStream &    pcout);
 
       /**
@@ -103,6 +111,13 @@ namespace squeal
       static double
       mac(const Eigen::VectorXcd &a, const Eigen::VectorXcd &b);
 
+      /** The largest number of real modes of one basis sample. */
+      unsigned int
+      sample_mode_count() const
+      {
+        return largest_sample;
+      }
+
       /** Number of basis vectors r. */
       unsigned int
       size() const
@@ -127,6 +142,7 @@ namespace squeal
       PETScMatrix                          M_ref; ///< M at the reference
       std::array<bool, n_parts>            active{}; ///< part is non-zero
       bool has_residuals = false; ///< G is complete for the current basis
+      unsigned int largest_sample = 0; ///< see sample_mode_count()
       Eigen::MatrixXd                      V; ///< n_local x r, M-orthonormal
       std::array<Eigen::MatrixXd, n_parts> Ar; ///< V^T A_k V
       std::array<Eigen::MatrixXd, n_parts> W;  ///< A_k V, local rows

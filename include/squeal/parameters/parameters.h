@@ -129,6 +129,7 @@ namespace squeal
       unsigned int reduced_samples = 3;
       double       reduced_band_factor = 1.5;
       bool         reduced_enrichment = true;
+      unsigned int reduced_enrichment_depth = 1; ///< levels (K^-1 K_t)^l Phi
       unsigned int n_check_points = 2;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);

@@ -1,0 +1,143 @@
+#!/usr/bin/python3
+"""Speed against error of squeal on the clamped disc (verification A3).
+
+usage: /usr/bin/python3 benchmarks/speed_vs_error/run_disc.py [SQUEAL] [WORKDIR]
+
+Runs build/squeal (full solver, friction and damping off) on a sequence of
+uniform disc meshes of degree 1, 2 and 3, and for each records the DoFs, the
+wall time of the whole run (set-up, eigensolve, output) and the largest and
+median relative frequency error of the 41 listed modes below 20 kHz against
+the converged reference of verification.md A3 (the k-th computed frequency
+against the k-th of the table expanded by multiplicity, as in the
+cea_disc_modes test). Writes WORKDIR/results.csv and, next to this script,
+disc_pareto.png (error against wall time) and prints a Markdown table.
+"""
+import csv
+import os
+import re
+import statistics
+import subprocess
+import sys
+import time
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+here = os.path.dirname(os.path.abspath(__file__))
+root = os.path.join(here, "..", "..")
+squeal = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build", "squeal")
+work = sys.argv[2] if len(sys.argv) > 2 else "/tmp/squeal_speed_vs_error"
+
+# verification.md A3: (name, Hz, multiplicity)
+A3 = [("(0,0)", 1629.8, 1), ("(0,1)", 1638.5, 2), ("(0,2)", 1839.8, 2),
+      ("(0,3)", 2557.6, 2), ("(0,4)", 3853.5, 2), ("(0,5)", 5611.7, 2),
+      ("(0,6)", 7731.5, 2), ("(0,7)", 10146.9, 2), ("(0,8)", 12813.0, 2),
+      ("(0,9)", 15696.4, 2), ("(0,10)", 18770.4, 2), ("(1,0)", 9669.8, 1),
+      ("(1,1)", 9924.2, 2), ("(1,2)", 10703.9, 2), ("(1,3)", 12041.6, 2),
+      ("(1,4)", 13954.6, 2), ("(1,5)", 16421.6, 2), ("(1,6)", 19380.9, 2),
+      ("in-plane n=0", 6303.3, 1), ("in-plane n=1", 9515.5, 2),
+      ("in-plane n=2", 14503.4, 2), ("in-plane n=3", 17988.6, 2)]
+REFERENCE = sorted(f for _, f, m in A3 for _ in range(m))
+
+# (degree, cells around, radial, through the thickness)
+MESHES = [(1, 48, 6, 2), (1, 64, 10, 2), (1, 96, 16, 3), (1, 128, 20, 4),
+          (2, 32, 4, 1), (2, 48, 6, 2), (2, 64, 10, 2), (2, 96, 16, 2),
+          (3, 32, 4, 1), (3, 48, 6, 2)]
+
+
+def run(degree, around, radial, thick):
+    name = f"d{degree}_{around}x{radial}x{thick}"
+    out = os.path.join(work, name)
+    prm = out + ".prm"
+    with open(prm, "w") as f:
+        f.write(f"""subsection Scene
+  set Bodies = disc
+end
+subsection Mesh
+  set Finite element degree = {degree}
+  set Disc cells circumference = {around}
+  set Disc cells radial = {radial}
+  set Disc cells thickness = {thick}
+end
+subsection Eigensolver
+  set Method = full
+  set Minimum frequency = 900
+  set Maximum frequency = 20000
+end
+subsection Damping
+  set Alpha = 0
+  set Beta = 0
+end
+subsection Sweep
+  set First parameter = friction coefficient
+  set First values = 0
+  set Second parameter = pad modulus
+  set Second values = 25e9
+end
+subsection Output
+  set Directory = {out}
+  set Overwrite = true
+  set Mode shapes = none
+end
+""")
+    start = time.monotonic()
+    r = subprocess.run([squeal, prm], capture_output=True, text=True)
+    seconds = time.monotonic() - start
+    if r.returncode != 0:
+        sys.exit(f"{name}: squeal failed\n{r.stdout}\n{r.stderr}")
+    dofs = int(re.search(r"(\d+) DoFs", r.stdout).group(1))
+    with open(os.path.join(out, "eigenvalues.csv")) as f:
+        freqs = sorted(float(row["freq_Hz"]) for row in csv.DictReader(f))
+    n = min(len(freqs), len(REFERENCE))
+    errors = [abs(freqs[k] - REFERENCE[k]) / REFERENCE[k] for k in range(n)]
+    if len(freqs) < len(REFERENCE):
+        errors.append(1.0)  # a missed mode counts as 100 %
+    return dict(mesh=name, degree=degree, dofs=dofs, seconds=round(seconds, 1),
+                max_error=max(errors), median_error=statistics.median(errors),
+                modes=len(freqs))
+
+
+def main():
+    os.makedirs(work, exist_ok=True)
+    rows = []
+    for mesh in MESHES:
+        row = run(*mesh)
+        print(f"{row['mesh']}: {row['dofs']} DoFs, {row['seconds']} s, "
+              f"max {100 * row['max_error']:.3f} %, median "
+              f"{100 * row['median_error']:.3f} %", flush=True)
+        rows.append(row)
+    with open(os.path.join(work, "results.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for degree, marker in ((1, "o"), (2, "s"), (3, "^")):
+        sel = [r for r in rows if r["degree"] == degree]
+        ax.loglog([r["seconds"] for r in sel],
+                  [100 * r["max_error"] for r in sel], marker + "-",
+                  label=f"degree {degree} (largest error)")
+        for r in sel:
+            ax.annotate(f"{r['dofs'] // 1000}k", (r["seconds"], 100 * r["max_error"]),
+                        fontsize=7, xytext=(3, 3), textcoords="offset points")
+    ax.axhline(0.5, color="k", lw=0.8, ls="--")
+    ax.set_xlabel("wall time of the run [s] (1 MPI rank)")
+    ax.set_ylabel("largest frequency error below 20 kHz [%]")
+    ax.set_title("Clamped disc (A3): error against time, uniform meshes")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend()
+    fig.tight_layout()
+    png = os.path.join(here, "disc_pareto.png")
+    fig.savefig(png + ".tmp.png", dpi=130)
+    os.replace(png + ".tmp.png", png)
+    print("wrote", png)
+    print("\n| mesh | degree | DoFs | wall time [s] | largest error | median error |")
+    print("|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['mesh']} | {r['degree']} | {r['dofs']} | {r['seconds']} | "
+              f"{100 * r['max_error']:.3f} % | {100 * r['median_error']:.3f} % |")
+
+
+if __name__ == "__main__":
+    main()
