@@ -19,15 +19,7 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   ConditionalOStream quiet(std::cout, false);
 
-  parameters::AllParameters a;
-  a.mesh.fe_degree                = 1;
-  a.mesh.disc_cells_circumference = 24;
-  a.mesh.disc_cells_radial        = 3;
-  a.mesh.disc_cells_thickness     = 1;
-  a.mesh.pad_cells_side           = 2;
-  a.mesh.pad_cells_thickness      = 1;
-  a.mesh.support_cells_length     = 10;
-  a.materials.support.density     = a.materials.support_updated_density;
+  parameters::AllParameters a      = test_tools::coarse_tribobrake(24, 3, 1, 2, 1);
   a.interface.friction_coefficient = 0.3;
 
   parameters::AllParameters b = a;

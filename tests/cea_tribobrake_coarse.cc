@@ -25,15 +25,7 @@ main(int argc, char **argv)
                            Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
   ConditionalOStream quiet(std::cout, false);
 
-  parameters::AllParameters prm;
-  prm.mesh.fe_degree                = 1;
-  prm.mesh.disc_cells_circumference = 48;
-  prm.mesh.disc_cells_radial        = 6;
-  prm.mesh.disc_cells_thickness     = 2;
-  prm.mesh.pad_cells_side           = 4;
-  prm.mesh.pad_cells_thickness      = 2;
-  prm.mesh.support_cells_length     = 10;
-  prm.materials.support.density     = prm.materials.support_updated_density;
+  const parameters::AllParameters prm = test_tools::coarse_tribobrake();
   physics::StructuralModel model(prm, MPI_COMM_WORLD);
   model.setup_and_assemble(quiet);
   const auto         parts = model.parts();

@@ -5,8 +5,6 @@
 // verification.md A2 and an independent SciPy computation (mu_c with
 // Rayleigh damping by bisection: 0.309435).
 
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-
 #include <squeal/eigen/reduced_model.h>
 
 #include "test_tools.h"
@@ -16,48 +14,9 @@ using namespace squeal;
 
 namespace
 {
-  const double m = 1, a = 5e6, b = 6e6, c = 1e6, k3 = 4e6;
-
-  struct TwoDof
-  {
-    eigen::PETScMatrix M, zero, rest, friction;
-    TwoDof()
-    {
-      IndexSet owned(2);
-      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-        owned.add_range(0, 2);
-      DynamicSparsityPattern dsp(2, 2);
-      for (unsigned int i = 0; i < 2; ++i)
-        for (unsigned int j = 0; j < 2; ++j)
-          dsp.add(i, j);
-      for (auto *A : {&M, &zero, &rest, &friction})
-        A->reinit(owned, owned, dsp, MPI_COMM_WORLD);
-      if (owned.n_elements() > 0)
-        {
-          M.set(0, 0, m);
-          M.set(1, 1, m);
-          rest.set(0, 0, a);
-          rest.set(0, 1, c);
-          rest.set(1, 0, c);
-          rest.set(1, 1, b);
-          friction.set(0, 1, -k3);
-        }
-      for (auto *A : {&M, &zero, &rest, &friction})
-        A->compress(VectorOperation::insert);
-    }
-    physics::MatrixParts
-    parts() const
-    {
-      // M_fixed, M_support, K_rest, K_pad, K_springs, K_n, K_t
-      return {{&M, &zero, &rest, &zero, &zero, &zero, &friction}, unit()};
-    }
-    // every reference and scaled value 1: the coefficients are mu, alpha, beta
-    static parameters::ScalarPoint
-    unit(const double mu = 0, const double alpha = 0, const double beta = 0)
-    {
-      return {1., mu, 1., 1., 1., alpha, beta};
-    }
-  };
+  using TwoDof = test_tools::HoffmannTwoDof;
+  constexpr double m = 1, a = TwoDof::a, b = TwoDof::b, c = TwoDof::c,
+                   k3 = TwoDof::k3;
 
   std::vector<std::complex<double>>
   eigenvalues(const TwoDof &model, const double mu, const double alpha,
@@ -68,13 +27,13 @@ namespace
     std::vector<std::complex<double>> l;
     if (!reduced)
       for (const auto &p : eigen::solve_full(
-             model.parts(), TwoDof::unit(mu, alpha, beta), band, quiet))
+             model.parts(), TwoDof::point(b, mu, alpha, beta), band, quiet))
         l.push_back(p.lambda);
     else
       {
         eigen::ReducedModel r;
-        r.build(model.parts(), {TwoDof::unit()}, band, 1.5, true, quiet);
-        for (const auto &p : r.solve(TwoDof::unit(mu, alpha, beta), 1., 1e4))
+        r.build(model.parts(), {TwoDof::point(b, 0.)}, band, 1.5, true, quiet);
+        for (const auto &p : r.solve(TwoDof::point(b, mu, alpha, beta), 1., 1e4))
           l.push_back(p.lambda);
       }
     return l;

@@ -40,12 +40,7 @@ main(int argc, char **argv)
   ConditionalOStream err(report,
                          Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
 
-  parameters::AllParameters prm;
-  prm.mesh.fe_degree                = 1;
-  prm.mesh.disc_cells_circumference = 48;
-  prm.mesh.disc_cells_radial        = 6;
-  prm.mesh.disc_cells_thickness     = 2;
-  prm.materials.support.density     = prm.materials.support_updated_density;
+  const parameters::AllParameters prm = test_tools::coarse_tribobrake();
   physics::StructuralModel model(prm, MPI_COMM_WORLD);
   model.setup_and_assemble(quiet);
   const auto parts = model.parts();
@@ -175,15 +170,8 @@ main(int argc, char **argv)
             lambdas.back().push_back(r.lambda);
             q.back().push_back(r.q);
           }
-        Eigen::MatrixXd mac;
-        if (k > 0)
-          {
-            mac.resize(q[k - 1].size(), q[k].size());
-            for (unsigned int i = 0; i < q[k - 1].size(); ++i)
-              for (unsigned int j = 0; j < q[k].size(); ++j)
-                mac(i, j) = eigen::ReducedModel::mac(q[k - 1][i], q[k][j]);
-          }
-        macs.push_back(mac);
+        macs.push_back(k > 0 ? test_tools::mac_matrix(q[k - 1], q[k]) :
+                               Eigen::MatrixXd());
       }
     int        next   = 0;
     const auto tracks = eigen::track_modes(lambdas, macs, next);

@@ -14,8 +14,6 @@
 //   eigenvalue equals an independent dense computation (Eigen's real
 //   nonsymmetric solver on the 4 x 4 companion matrix) to 1e-8.
 
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-
 #include <squeal/eigen/reduced_model.h>
 #include <squeal/eigen/tracking.h>
 
@@ -28,50 +26,8 @@ using namespace squeal;
 
 namespace
 {
-  const double a = 5e6, b0 = 6e6, c = 1e6, k3 = 4e6;
-
-  // The parts: M_fixed = I, K_rest = [[a, c], [c, 0]], K_pad = [[0, 0],
-  // [0, 1]] (scaled by "E_pad" = b), K_t = [[0, -k3], [0, 0]].
-  struct Model
-  {
-    eigen::PETScMatrix M, zero, rest, pad, friction;
-    Model()
-    {
-      IndexSet owned(2);
-      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-        owned.add_range(0, 2);
-      DynamicSparsityPattern dsp(2, 2);
-      for (unsigned int i = 0; i < 2; ++i)
-        for (unsigned int j = 0; j < 2; ++j)
-          dsp.add(i, j);
-      for (auto *A : {&M, &zero, &rest, &pad, &friction})
-        A->reinit(owned, owned, dsp, MPI_COMM_WORLD);
-      if (owned.n_elements() > 0)
-        {
-          M.set(0, 0, 1.);
-          M.set(1, 1, 1.);
-          rest.set(0, 0, a);
-          rest.set(0, 1, c);
-          rest.set(1, 0, c);
-          pad.set(1, 1, 1.);
-          friction.set(0, 1, -k3);
-        }
-      for (auto *A : {&M, &zero, &rest, &pad, &friction})
-        A->compress(VectorOperation::insert);
-    }
-    physics::MatrixParts
-    parts() const
-    {
-      return {{{&M, &zero, &rest, &pad, &zero, &zero, &friction}},
-              point(1., 0.)};
-    }
-    static parameters::ScalarPoint
-    point(const double b, const double mu, const double alpha = 0,
-          const double beta = 0)
-    {
-      return {b, mu, 1., 1., 1., alpha, beta};
-    }
-  };
+  using Model              = test_tools::HoffmannTwoDof;
+  constexpr double a = Model::a, b0 = Model::b, c = Model::c, k3 = Model::k3;
 
   // Independent: eigenvalues with Im > 0 of the companion matrix of
   // lambda^2 I + lambda C + K, by Eigen.
@@ -171,15 +127,8 @@ main(int argc, char **argv)
             lambdas.back().push_back(p.lambda);
             q.back().push_back(p.q);
           }
-        Eigen::MatrixXd mac;
-        if (k > 0)
-          {
-            mac.resize(q[k - 1].size(), q[k].size());
-            for (unsigned int i = 0; i < q[k - 1].size(); ++i)
-              for (unsigned int j = 0; j < q[k].size(); ++j)
-                mac(i, j) = eigen::ReducedModel::mac(q[k - 1][i], q[k][j]);
-          }
-        macs.push_back(mac);
+        macs.push_back(k > 0 ? test_tools::mac_matrix(q[k - 1], q[k]) :
+                               Eigen::MatrixXd());
       }
     int        next   = 0;
     const auto tracks = eigen::track_modes(lambdas, macs, next);

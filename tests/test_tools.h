@@ -6,6 +6,10 @@
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <squeal/eigen/reduced_model.h>
+#include <squeal/parameters/parameters.h>
 
 #include <cmath>
 #include <iomanip>
@@ -40,6 +44,93 @@ namespace test_tools
         std::cout << std::endl;
       }
   }
+
+  /**
+   * The coarse TriboBrake of the tests: degree 1, disc 48 x 6 x 2 cells (or
+   * the given counts), pad 4 x 4 x 2, support 10, updated support density.
+   */
+  inline squeal::parameters::AllParameters
+  coarse_tribobrake(const unsigned int around    = 48,
+                    const unsigned int radial    = 6,
+                    const unsigned int thickness = 2,
+                    const unsigned int pad_side  = 4,
+                    const unsigned int pad_thick = 2)
+  {
+    squeal::parameters::AllParameters prm;
+    prm.mesh.fe_degree                = 1;
+    prm.mesh.disc_cells_circumference = around;
+    prm.mesh.disc_cells_radial        = radial;
+    prm.mesh.disc_cells_thickness     = thickness;
+    prm.mesh.pad_cells_side           = pad_side;
+    prm.mesh.pad_cells_thickness      = pad_thick;
+    prm.mesh.support_cells_length     = 10;
+    prm.materials.support.density     = prm.materials.support_updated_density;
+    return prm;
+  }
+
+  /** MAC(i, j) between mode i of @p a and mode j of @p b (reduced coordinates). */
+  inline Eigen::MatrixXd
+  mac_matrix(const std::vector<Eigen::VectorXcd> &a,
+             const std::vector<Eigen::VectorXcd> &b)
+  {
+    Eigen::MatrixXd mac(a.size(), b.size());
+    for (unsigned int i = 0; i < a.size(); ++i)
+      for (unsigned int j = 0; j < b.size(); ++j)
+        mac(i, j) = squeal::eigen::ReducedModel::mac(a[i], b[j]);
+    return mac;
+  }
+
+  /**
+   * The two-degree-of-freedom model of Hoffmann et al. (2002)
+   * (verification A2) as matrix parts: M = I, K = [[a, c - mu k3], [c, b]]
+   * with b carried by the pad-modulus part (so a sweep of "E_pad" sweeps b)
+   * and k3 by the friction part. a = 5e6, b = 6e6 (default), c = 1e6,
+   * k3 = 4e6 N/m, m = 1 kg.
+   */
+  struct HoffmannTwoDof
+  {
+    static constexpr double a = 5e6, b = 6e6, c = 1e6, k3 = 4e6;
+    squeal::eigen::PETScMatrix M, zero, rest, pad, friction;
+    HoffmannTwoDof()
+    {
+      using namespace dealii;
+      IndexSet owned(2);
+      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        owned.add_range(0, 2);
+      DynamicSparsityPattern dsp(2, 2);
+      for (unsigned int i = 0; i < 2; ++i)
+        for (unsigned int j = 0; j < 2; ++j)
+          dsp.add(i, j);
+      for (auto *A : {&M, &zero, &rest, &pad, &friction})
+        A->reinit(owned, owned, dsp, MPI_COMM_WORLD);
+      if (owned.n_elements() > 0)
+        {
+          M.set(0, 0, 1.);
+          M.set(1, 1, 1.);
+          rest.set(0, 0, a);
+          rest.set(0, 1, c);
+          rest.set(1, 0, c);
+          pad.set(1, 1, 1.);
+          friction.set(0, 1, -k3);
+        }
+      for (auto *A : {&M, &zero, &rest, &pad, &friction})
+        A->compress(VectorOperation::insert);
+    }
+    /** M_fixed, M_support, K_rest, K_pad, K_springs, K_n, K_t. */
+    squeal::physics::MatrixParts
+    parts() const
+    {
+      return {{{&M, &zero, &rest, &pad, &zero, &zero, &friction}},
+              point(1., 0.)};
+    }
+    /** The point with K_22 = @p b_value, friction mu, Rayleigh alpha, beta. */
+    static squeal::parameters::ScalarPoint
+    point(const double b_value, const double mu, const double alpha = 0,
+          const double beta = 0)
+    {
+      return {b_value, mu, 1., 1., 1., alpha, beta};
+    }
+  };
 
   inline int
   finish()
