@@ -18,14 +18,14 @@ import csv
 import os
 import re
 import statistics
-import subprocess
 import sys
-import time
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from common import run_squeal  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -52,9 +52,7 @@ MESHES = [(1, 48, 6, 2), (1, 64, 10, 2), (1, 96, 16, 3), (1, 128, 20, 4),
 def run(degree, around, radial, thick):
     name = f"d{degree}_{around}x{radial}x{thick}"
     out = os.path.join(work, name)
-    prm = out + ".prm"
-    with open(prm, "w") as f:
-        f.write(f"""subsection Scene
+    stdout, seconds = run_squeal(squeal, f"""subsection Scene
   set Bodies = disc
 end
 subsection Mesh
@@ -78,18 +76,8 @@ subsection Sweep
   set Second parameter = pad modulus
   set Second values = 25e9
 end
-subsection Output
-  set Directory = {out}
-  set Overwrite = true
-  set Mode shapes = none
-end
-""")
-    start = time.monotonic()
-    r = subprocess.run([squeal, prm], capture_output=True, text=True)
-    seconds = time.monotonic() - start
-    if r.returncode != 0:
-        sys.exit(f"{name}: squeal failed\n{r.stdout}\n{r.stderr}")
-    dofs = int(re.search(r"(\d+) DoFs", r.stdout).group(1))
+""", out)
+    dofs = int(re.search(r"(\d+) DoFs", stdout).group(1))
     with open(os.path.join(out, "eigenvalues.csv")) as f:
         freqs = sorted(float(row["freq_Hz"]) for row in csv.DictReader(f))
     n = min(len(freqs), len(REFERENCE))

@@ -14,8 +14,9 @@ growth-rate errors (from check_full.csv).
 import csv
 import os
 import re
-import subprocess
 import sys
+
+from common import run_squeal
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -35,9 +36,7 @@ end
 def run(factor, enrichment):
     name = f"factor{factor}_{'enriched' if enrichment else 'modes_only'}"
     out = os.path.join(work, name)
-    prm = out + ".prm"
-    with open(prm, "w") as f:
-        f.write(MESH + f"""subsection Materials
+    stdout, _ = run_squeal(squeal, MESH + f"""subsection Materials
   set Support density model = updated
 end
 subsection Eigensolver
@@ -52,19 +51,11 @@ subsection Sweep
   set Second parameter = friction coefficient
   set Second values = 0.2, 0.5, 0.7
 end
-subsection Output
-  set Directory = {out}
-  set Overwrite = true
-  set Mode shapes = none
-end
-""")
-    r = subprocess.run([squeal, prm], capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"{name}: squeal failed\n{r.stdout}\n{r.stderr}")
-    kept = int(re.search(r"(\d+) M-orthonormal directions kept", r.stdout).group(1))
+""", out)
+    kept = int(re.search(r"(\d+) M-orthonormal directions kept", stdout).group(1))
 
     def section(label):
-        m = re.search(r"\| " + label + r"\s*\|\s*\d+\s*\|\s*([\d.e+-]+)s", r.stdout)
+        m = re.search(r"\| " + label + r"\s*\|\s*\d+\s*\|\s*([\d.e+-]+)s", stdout)
         return float(m.group(1)) if m else float("nan")
 
     with open(os.path.join(out, "check_full.csv")) as f:
