@@ -5,7 +5,7 @@
 //    F_y^pad = mu k_n (z_d - z_p), F_y^disc = -mu k_n (z_d - z_p)) with
 //    k_n = k A_node, A_node the node's tributary area, when the sliding
 //    direction is -y (the thesis' sign convention), to 1e-12.
-// 2. Non-matching meshes (pad 2 x 2, disc 3 x 3 cells; degree 1 and 2),
+// 2. Non-matching meshes (pad 2 x 2, disc 3 x 3 cells; degree 1, 2 and 3),
 //    mortar quadrature: a unit normal gap gives total forces k A on each
 //    side, and a gap varying as x gives pad forces whose moment
 //    sum_i x_i f_i equals k int_Gamma x^2 dA = k / 3, to 1e-12 (a nodal
@@ -165,7 +165,7 @@ main(int argc, char **argv)
     check("matching, nodal: K_t equals the thesis' friction rows", dt, 0, 1e-12, k);
   }
 
-  for (const unsigned int degree : {1u, 2u})
+  for (const unsigned int degree : {1u, 2u, 3u})
     for (const std::string rule : {"mortar", "nodal"})
       {
         Tensor<1, 3> t;

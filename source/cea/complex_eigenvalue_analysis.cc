@@ -1,5 +1,6 @@
-// The complex eigenvalue analysis driver: model set-up, the sweep over pad
-// modulus and friction coefficient with the full or the reduced solver, the
+// The complex eigenvalue analysis driver: model set-up, the sweep over two
+// scalar parameters (by default pad modulus and friction coefficient) with
+// the full or the reduced solver (points shared among MPI ranks), the
 // check of the reduced solver against the full one, mode tracking and the
 // unstable regions, and every output file. It follows the tutorial class
 // shape (setup_system, solve, output_results, run) with a timer per phase.

@@ -47,7 +47,7 @@ namespace squeal
      * `mortar`: segment-based: each pad face is clipped against every disc
      * face it overlaps (Sutherland-Hodgman on the plane z = 0), the overlap
      * is split into triangles and each gets a Gauss rule of n_points^2-type
-     * accuracy (QGaussSimplex with @p n_points per direction). `nodal`: the
+     * accuracy (QGaussSimplex with min(@p n_points, 4) per direction, exact to degree 7). `nodal`: the
      * Gauss-Lobatto rule with @p n_points per direction on each pad face,
      * each point projected on the disc face below it; for degree 1 on
      * matching meshes this is the thesis' node-pair element.

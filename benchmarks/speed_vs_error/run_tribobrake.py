@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""Speed against error of the TriboBrake CEA at the Table 3.1 point.
+
+usage: /usr/bin/python3 benchmarks/speed_vs_error/run_tribobrake.py [SQUEAL] [WORKDIR]
+
+Runs build/squeal (full solver) at E_pad = 25 GPa, mu = 0.5 on uniform disc
+meshes of degree 2 and 3 (pad 4 x 4 x 2, support 4 x 4 x 10 as in the
+default) and compares the frequencies and growth rates of the modes in
+900-20 000 Hz with those of the finest run (degree 3, 48 x 6 x 2), the k-th
+against the k-th by frequency. Prints a Markdown table: DoFs, wall time,
+largest and median frequency difference, largest growth-rate difference
+(in 1/s and in % of |Re| + 1 1/s).
+"""
+import csv
+import os
+import re
+import statistics
+import sys
+
+from common import run_squeal
+
+here = os.path.dirname(os.path.abspath(__file__))
+root = os.path.join(here, "..", "..")
+squeal = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build", "squeal")
+work = sys.argv[2] if len(sys.argv) > 2 else "/tmp/squeal_tribobrake_sequence"
+MESHES = [(2, 48, 6, 2), (2, 64, 10, 2), (3, 32, 4, 1), (3, 48, 6, 2)]
+
+
+def run(degree, around, radial, thick):
+    out = os.path.join(work, f"d{degree}_{around}x{radial}x{thick}")
+    stdout, seconds = run_squeal(squeal, f"""subsection Mesh
+  set Finite element degree = {degree}
+  set Disc cells circumference = {around}
+  set Disc cells radial = {radial}
+  set Disc cells thickness = {thick}
+end
+subsection Eigensolver
+  set Method = full
+end
+subsection Sweep
+  set First parameter = pad modulus
+  set First values = 25e9
+  set Second parameter = friction coefficient
+  set Second values = 0.5
+end
+""", out)
+    dofs = int(re.search(r"(\d+) DoFs", stdout).group(1))
+    with open(os.path.join(out, "eigenvalues.csv")) as f:
+        modes = sorted((float(r["freq_Hz"]), float(r["re_per_s"]))
+                       for r in csv.DictReader(f))
+    return dict(mesh=os.path.basename(out), dofs=dofs, seconds=seconds,
+                modes=modes)
+
+
+def main():
+    os.makedirs(work, exist_ok=True)
+    runs = [run(*m) for m in MESHES]
+    ref = runs[-1]["modes"]
+    print("| mesh | DoFs | wall time [s] | modes | largest freq. diff. | "
+          "median freq. diff. | largest growth diff. |")
+    print("|---|---|---|---|---|---|---|")
+    for r in runs:
+        n = min(len(r["modes"]), len(ref))
+        df = [abs(a[0] - b[0]) / b[0] for a, b in zip(r["modes"][:n], ref[:n])]
+        dre = [abs(a[1] - b[1]) / (abs(b[1]) + 1) for a, b in
+               zip(r["modes"][:n], ref[:n])]
+        print(f"| {r['mesh']} | {r['dofs']} | {r['seconds']:.0f} | "
+              f"{len(r['modes'])} | {100 * max(df):.3f} % | "
+              f"{100 * statistics.median(df):.3f} % | {100 * max(dre):.2g} % |",
+              flush=True)
+
+
+if __name__ == "__main__":
+    main()
