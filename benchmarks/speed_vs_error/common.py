@@ -22,3 +22,26 @@ end
     if r.returncode != 0:
         sys.exit(f"{out}: squeal failed\n{r.stdout}\n{r.stderr}")
     return r.stdout, seconds
+
+
+def single_point_sweep(first, first_value, second, second_value):
+    """The Sweep subsection of a run at one point."""
+    return f"""subsection Sweep
+  set First parameter = {first}
+  set First values = {first_value}
+  set Second parameter = {second}
+  set Second values = {second_value}
+end
+"""
+
+
+def read_run(stdout, out):
+    """(DoFs, [(freq_Hz, re_per_s)] sorted by frequency) of a finished run."""
+    import csv
+    import os
+    import re
+    dofs = int(re.search(r"(\d+) DoFs", stdout).group(1))
+    with open(os.path.join(out, "eigenvalues.csv")) as f:
+        modes = sorted((float(r["freq_Hz"]), float(r["re_per_s"]))
+                       for r in csv.DictReader(f))
+    return dofs, modes

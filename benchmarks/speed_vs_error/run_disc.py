@@ -16,7 +16,6 @@ disc_pareto.png (error against wall time) and prints a Markdown table.
 """
 import csv
 import os
-import re
 import statistics
 import sys
 
@@ -25,7 +24,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from common import run_squeal  # noqa: E402
+from common import read_run, run_squeal, single_point_sweep  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -70,16 +69,9 @@ subsection Damping
   set Alpha = 0
   set Beta = 0
 end
-subsection Sweep
-  set First parameter = friction coefficient
-  set First values = 0
-  set Second parameter = pad modulus
-  set Second values = 25e9
-end
-""", out)
-    dofs = int(re.search(r"(\d+) DoFs", stdout).group(1))
-    with open(os.path.join(out, "eigenvalues.csv")) as f:
-        freqs = sorted(float(row["freq_Hz"]) for row in csv.DictReader(f))
+""" + single_point_sweep("friction coefficient", 0, "pad modulus", 25e9), out)
+    dofs, modes = read_run(stdout, out)
+    freqs = [f for f, _ in modes]
     n = min(len(freqs), len(REFERENCE))
     errors = [abs(freqs[k] - REFERENCE[k]) / REFERENCE[k] for k in range(n)]
     if len(freqs) < len(REFERENCE):

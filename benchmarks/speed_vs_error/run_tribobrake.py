@@ -11,13 +11,11 @@ reference mode against the computed mode nearest in frequency. Prints a Markdown
 largest and median frequency difference, largest growth-rate difference
 (in 1/s and in % of |Re| + 1 1/s).
 """
-import csv
 import os
-import re
 import statistics
 import sys
 
-from common import run_squeal
+from common import read_run, run_squeal, single_point_sweep
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -37,17 +35,8 @@ end
 subsection Eigensolver
   set Method = full
 end
-subsection Sweep
-  set First parameter = pad modulus
-  set First values = 25e9
-  set Second parameter = friction coefficient
-  set Second values = 0.5
-end
-""", out)
-    dofs = int(re.search(r"(\d+) DoFs", stdout).group(1))
-    with open(os.path.join(out, "eigenvalues.csv")) as f:
-        modes = sorted((float(r["freq_Hz"]), float(r["re_per_s"]))
-                       for r in csv.DictReader(f))
+""" + single_point_sweep("pad modulus", 25e9, "friction coefficient", 0.5), out)
+    dofs, modes = read_run(stdout, out)
     return dict(mesh=os.path.basename(out), dofs=dofs, seconds=seconds,
                 modes=modes)
 
