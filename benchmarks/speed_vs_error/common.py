@@ -45,3 +45,14 @@ def read_run(stdout, out):
         modes = sorted((float(r["freq_Hz"]), float(r["re_per_s"]))
                        for r in csv.DictReader(f))
     return dofs, modes
+
+
+def disc_mesh(degree, around, radial, thick):
+    """The Mesh subsection: FE degree and the disc's cell counts."""
+    return f"""subsection Mesh
+  set Finite element degree = {degree}
+  set Disc cells circumference = {around}
+  set Disc cells radial = {radial}
+  set Disc cells thickness = {thick}
+end
+"""

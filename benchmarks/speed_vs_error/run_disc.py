@@ -24,7 +24,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from common import read_run, run_squeal, single_point_sweep  # noqa: E402
+from common import disc_mesh, read_run, run_squeal, single_point_sweep  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -54,13 +54,7 @@ def run(degree, around, radial, thick):
     stdout, seconds = run_squeal(squeal, f"""subsection Scene
   set Bodies = disc
 end
-subsection Mesh
-  set Finite element degree = {degree}
-  set Disc cells circumference = {around}
-  set Disc cells radial = {radial}
-  set Disc cells thickness = {thick}
-end
-subsection Eigensolver
+""" + disc_mesh(degree, around, radial, thick) + f"""subsection Eigensolver
   set Method = full
   set Minimum frequency = 900
   set Maximum frequency = 40000

@@ -16,7 +16,7 @@ import os
 import re
 import sys
 
-from common import run_squeal
+from common import disc_mesh, run_squeal
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -24,13 +24,7 @@ args = [a for a in sys.argv[1:] if not a.startswith("--")]
 squeal = args[0] if args else os.path.join(root, "build", "squeal")
 work = args[1] if len(args) > 1 else "/tmp/squeal_reduced_table"
 default_mesh = "--default-mesh" in sys.argv
-MESH = "" if default_mesh else """subsection Mesh
-  set Finite element degree = 1
-  set Disc cells circumference = 48
-  set Disc cells radial = 6
-  set Disc cells thickness = 2
-end
-"""
+MESH = "" if default_mesh else disc_mesh(1, 48, 6, 2)
 
 
 def run(factor, enrichment):

@@ -15,7 +15,7 @@ import os
 import statistics
 import sys
 
-from common import read_run, run_squeal, single_point_sweep
+from common import disc_mesh, read_run, run_squeal, single_point_sweep
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -26,13 +26,7 @@ MESHES = [(2, 48, 6, 2), (2, 64, 10, 2), (3, 32, 4, 1), (3, 48, 6, 2)]
 
 def run(degree, around, radial, thick):
     out = os.path.join(work, f"d{degree}_{around}x{radial}x{thick}")
-    stdout, seconds = run_squeal(squeal, f"""subsection Mesh
-  set Finite element degree = {degree}
-  set Disc cells circumference = {around}
-  set Disc cells radial = {radial}
-  set Disc cells thickness = {thick}
-end
-subsection Eigensolver
+    stdout, seconds = run_squeal(squeal, disc_mesh(degree, around, radial, thick) + f"""subsection Eigensolver
   set Method = full
 end
 """ + single_point_sweep("pad modulus", 25e9, "friction coefficient", 0.5), out)

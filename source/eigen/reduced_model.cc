@@ -37,12 +37,14 @@ namespace squeal
       // A * B for a sparse PETSc matrix and the locally owned rows of a
       // dense n x m matrix B (column-major), as the local rows of the result.
       Eigen::MatrixXd
-      multiply(const PETScMatrix &A, Eigen::MatrixXd &B)
+      multiply(const PETScMatrix &A, const Eigen::MatrixXd &B)
       {
         const PetscInt n_local = B.rows(), m = B.cols();
         Mat            Bd, W;
         if (MatCreateDense(A.get_mpi_communicator(), n_local, PETSC_DECIDE,
-                           A.m(), m, B.data(), &Bd) != 0 ||
+                           A.m(), m,
+                           // PETSc only reads B
+                           const_cast<double *>(B.data()), &Bd) != 0 ||
             MatMatMult(A, Bd, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &W) != 0)
           throw std::runtime_error("reduced model: MatMatMult failed");
         const PetscScalar *w;
@@ -103,13 +105,6 @@ namespace squeal
       model.mass(model.reference, M_ref);
       for (unsigned int k = 0; k < n_parts; ++k)
         active[k] = model.matrix[k]->frobenius_norm() > 0.;
-    }
-
-    Eigen::MatrixXd
-    ReducedModel::reference_mass_times(const Eigen::MatrixXd &X) const
-    {
-      Eigen::MatrixXd copy = X;
-      return multiply(M_ref, copy);
     }
 
     void
@@ -206,7 +201,7 @@ namespace squeal
       for (unsigned int j = 0; j < vectors.size(); ++j)
         N.col(j) = local_part(vectors[j], owned);
       const auto m_norms = [&](Eigen::MatrixXd &X) {
-        Eigen::MatrixXd MX = reference_mass_times(X);
+        Eigen::MatrixXd MX = multiply(M_ref, X);
         Eigen::MatrixXd n2 = (X.array() * MX.array()).colwise().sum();
         sum_over_ranks(n2, comm);
         return Eigen::VectorXd(n2.transpose().cwiseMax(0.).cwiseSqrt());
@@ -214,7 +209,7 @@ namespace squeal
       const Eigen::VectorXd before = m_norms(N);
       for (unsigned int pass = 0; pass < 2; ++pass)
         {
-          Eigen::MatrixXd MN           = reference_mass_times(N);
+          Eigen::MatrixXd MN           = multiply(M_ref, N);
           Eigen::MatrixXd coefficients = V.transpose() * MN;
           sum_over_ranks(coefficients, comm);
           N -= V * coefficients;
@@ -236,7 +231,7 @@ namespace squeal
         }
       // Orthonormalise the new block among itself, then extend every
       // projected part by the new rows and columns only.
-      Eigen::MatrixXd MB   = reference_mass_times(B);
+      Eigen::MatrixXd MB   = multiply(M_ref, B);
       Eigen::MatrixXd gram = B.transpose() * MB;
       sum_over_ranks(gram, comm);
       Eigen::MatrixXd Nn = B * orthonormalising_transform(gram);
@@ -274,7 +269,7 @@ namespace squeal
       // Orthonormalise first, so that the sparse products act on the kept
       // directions only (often a third of the vectors).
       {
-        Eigen::MatrixXd MB   = reference_mass_times(B);
+        Eigen::MatrixXd MB   = multiply(M_ref, B);
         Eigen::MatrixXd gram = B.transpose() * MB;
         sum_over_ranks(gram, comm);
         V = B * orthonormalising_transform(gram);

@@ -134,8 +134,6 @@ namespace squeal
       /// The mass matrix at the reference point, for M-orthonormality.
       void
       make_reference_mass(const physics::MatrixParts &model);
-      Eigen::MatrixXd
-      reference_mass_times(const Eigen::MatrixXd &X) const;
 
       static constexpr unsigned int n_parts = physics::MatrixParts::n_parts;
       physics::MatrixParts                 parts; ///< non-owning
