@@ -1,0 +1,125 @@
+#ifndef squeal_tribology_contact_history_h
+#define squeal_tribology_contact_history_h
+
+/**
+ * @file
+ * The contact-stress history of the pad face: what the transient braking
+ * simulation records at every slave (pad) node and the tribology module
+ * reads. Stored as HDF5 (`contact_history.h5`), node-major so that one node's
+ * history is contiguous:
+ *
+ * | dataset | shape | type | unit attribute |
+ * |---|---|---|---|
+ * | `/coordinates` | n_nodes x 3 | double | m |
+ * | `/time` | n_samples | double | s |
+ * | `/p_N` | n_nodes x n_samples | double | Pa (contact pressure, >= 0) |
+ * | `/t_T1` | n_nodes x n_samples | double | Pa (traction along the sliding direction) |
+ * | `/t_T2` | n_nodes x n_samples | double | Pa (traction along the radial direction) |
+ * | `/slip_velocity` | n_nodes x n_samples | double | m/s |
+ * | `/status` | n_nodes x n_samples | int | 0 separated, 1 stick, 2 slip |
+ *
+ * Root attributes: `sampling_rate` (double, Hz), `sliding_direction` and
+ * `radial_direction` (3 doubles each, unit vectors: the pad-face frame of the
+ * maps), `format` (string, "squeal contact history 1"). Every dataset carries
+ * a string attribute `unit`.
+ */
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace squeal
+{
+  namespace tribology
+  {
+    /** A contact history in memory; the layout of the file above. */
+    struct ContactHistory
+    {
+      std::vector<std::array<double, 3>> coordinates; ///< [node], m
+      std::vector<double>                time;        ///< [sample], s
+      double                             sampling_rate = 0.; ///< Hz
+      std::array<double, 3> sliding_direction{{0., 1., 0.}}; ///< unit vector
+      std::array<double, 3> radial_direction{{1., 0., 0.}};  ///< unit vector
+      std::vector<std::vector<double>> p_N;  ///< [node][sample], Pa
+      std::vector<std::vector<double>> t_T1; ///< [node][sample], Pa
+      std::vector<std::vector<double>> t_T2; ///< [node][sample], Pa
+      std::vector<std::vector<double>> slip_velocity; ///< [node][sample], m/s
+      std::vector<std::vector<int>>    status;        ///< [node][sample]
+
+      std::size_t
+      n_nodes() const
+      {
+        return coordinates.size();
+      }
+      std::size_t
+      n_samples() const
+      {
+        return time.size();
+      }
+
+      /**
+       * Checks shapes, finiteness, p_N >= 0, status in {0, 1, 2}, a positive
+       * sampling rate and unit frame vectors.
+       * @throws std::runtime_error naming the first offending dataset
+       * (and node), prefixed by @p where (a file name).
+       */
+      void
+      check(const std::string &where) const;
+
+      /** Pad-face coordinates of a node: (position . sliding, position .
+       * radial) [m]: the x and y axes of every map. */
+      std::array<double, 2>
+      face_coordinates(std::size_t node) const;
+    };
+
+    /**
+     * Writes @p history to @p filename (HDF5, the layout above), through a
+     * temporary name renamed at the end.
+     * @throws std::runtime_error if the history fails check() or the file
+     * cannot be written.
+     */
+    void
+    write_contact_history(const std::string    &filename,
+                          const ContactHistory &history);
+
+    /**
+     * Reads and checks a contact history.
+     * @throws std::runtime_error naming the file and the dataset or
+     * attribute that is missing, of the wrong shape, or invalid (NaN,
+     * negative pressure, unknown status).
+     */
+    ContactHistory
+    read_contact_history(const std::string &filename);
+
+    /**
+     * A squeal-like history for tests and demonstrations (verification C3
+     * scaled): on an n x n grid of nodes over a square pad face of edge
+     * @p pad_size [m] centred at (@p pad_radius, 0, 0), with sliding along
+     * +y and the leading edge (where the disc enters) at y = -pad_size / 2,
+     * p(t) = p_mean max(0, 1 + A (15 sin(2 pi f t) + 3 sin(6 pi f t + 0.7)))
+     * with A = 1 at the leading edge on the inner radius falling linearly to
+     * @p trailing_amplitude at the trailing edge (and by a factor 0.6 from
+     * the inner to the outer radius), q = t_T1 = mu p (slip), t_T2 = 0,
+     * status 0 where p = 0, else 2 (slip at 10 rpm times the pad radius).
+     * With A = 1 and p_mean = 1 this is
+     * exactly the C3 history.
+     *
+     * @param n nodes per side, >= 2
+     * @param samples number of samples; @param sampling_rate Hz
+     * @param frequency squeal frequency f [Hz]
+     * @param p_mean [Pa]; @param mu friction coefficient
+     */
+    ContactHistory
+    synthetic_squeal_history(unsigned int n,
+                             std::size_t  samples,
+                             double       sampling_rate,
+                             double       frequency,
+                             double       p_mean,
+                             double       mu,
+                             double       pad_size,
+                             double       pad_radius,
+                             double       trailing_amplitude);
+  } // namespace tribology
+} // namespace squeal
+
+#endif

@@ -1,0 +1,67 @@
+// squeal-tribology: fatigue-damage maps from contact-stress histories, crack
+// and exfoliation maps from SEM images, and their correlation. Usage:
+//   squeal-tribology [--overwrite] FILE.prm   run
+//   squeal-tribology --validate FILE.prm      parse and report, run nothing
+//   squeal-tribology --print-parameters       every parameter: default, range, help
+
+#include <squeal/tribology/tribology_analysis.h>
+
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+int
+main(int argc, char **argv)
+{
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  const std::string              usage =
+    "usage: squeal-tribology [--overwrite] FILE.prm | --validate FILE.prm | "
+    "--print-parameters";
+  try
+    {
+      squeal::tribology::TribologyParameters prm;
+      dealii::ParameterHandler                handler;
+      if (args.size() == 1 && args[0] == "--print-parameters")
+        {
+          prm.declare_parameters(handler);
+          handler.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+          return 0;
+        }
+      bool        validate = false, overwrite = false;
+      std::string file;
+      for (const auto &a : args)
+        if (a == "--validate")
+          validate = true;
+        else if (a == "--overwrite")
+          overwrite = true;
+        else if (!a.empty() && a[0] == '-')
+          throw std::runtime_error("unknown option '" + a + "'\n" + usage);
+        else if (file.empty())
+          file = a;
+        else
+          throw std::runtime_error("more than one parameter file given\n" +
+                                   usage);
+      if (file.empty())
+        throw std::runtime_error("no parameter file given\n" + usage);
+      prm.read(handler, file);
+      prm.output.overwrite = prm.output.overwrite || overwrite;
+      if (validate)
+        {
+          std::cout << file << ": valid (contact history '"
+                    << prm.history.file << "', " << prm.images.files.size()
+                    << " image entr" << (prm.images.files.size() == 1 ? "y" : "ies")
+                    << ", output to " << prm.output.directory << ")"
+                    << std::endl;
+          return 0;
+        }
+      squeal::tribology::TribologyAnalysis analysis(prm, handler);
+      analysis.run();
+    }
+  catch (const std::exception &e)
+    {
+      std::cerr << "squeal-tribology: error: " << e.what() << std::endl;
+      return 1;
+    }
+  return 0;
+}
