@@ -9,6 +9,8 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <squeal/eigen/reduced_model.h>
+
+#include "check.h"
 #include <squeal/parameters/parameters.h>
 
 #include <cmath>
@@ -18,33 +20,6 @@
 
 namespace test_tools
 {
-  inline int n_failures = 0;
-
-  /** Prints "name: ok" or "name: FAILED (value, reference, error)" on rank
-   *  0; ok when |value - reference| <= tolerance * scale. */
-  inline void
-  check(const std::string &name,
-        const double       value,
-        const double       reference,
-        const double       tolerance,
-        const double       scale = -1.)
-  {
-    const double s   = scale > 0 ? scale : std::abs(reference);
-    const double err = std::abs(value - reference) / (s > 0 ? s : 1.);
-    const bool   ok  = err <= tolerance;
-    if (!ok)
-      ++n_failures;
-    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-      {
-        std::cout << name << ": " << (ok ? "ok" : "FAILED");
-        if (!ok)
-          std::cout << std::setprecision(12) << " (value " << value
-                    << ", reference " << reference << ", error " << err
-                    << " > " << tolerance << ")";
-        std::cout << std::endl;
-      }
-  }
-
   /**
    * The coarse TriboBrake of the tests: degree 1, disc 48 x 6 x 2 cells (or
    * the given counts), pad 4 x 4 x 2, support 10, updated support density.
@@ -132,14 +107,6 @@ namespace test_tools
     }
   };
 
-  inline int
-  finish()
-  {
-    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-      std::cout << (n_failures == 0 ? "all checks passed" : "CHECKS FAILED")
-                << std::endl;
-    return n_failures == 0 ? 0 : 1;
-  }
 } // namespace test_tools
 
 #endif

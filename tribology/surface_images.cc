@@ -194,36 +194,73 @@ namespace squeal
                m.at<uchar>(r, c) != 0;
       }
 
-      // Removes staircase corners left by thinning: a pixel whose only
-      // neighbours are two orthogonal ones at a right angle is dropped
-      // (its two neighbours stay 8-connected), so that the diagonal link
-      // is counted instead of two orthogonal ones.
+      // Thinning leaves 4-connected staircases (an L of three pixels where
+      // a diagonal step would do). A pixel is redundant when its neighbours
+      // stay one 8-connected group without it; it is removed if it has three
+      // neighbours or more, or exactly two at a right angle, so that line
+      // ends are never eroded. Repeated until nothing changes.
       void
-      remove_corners(cv::Mat &skel)
+      remove_redundant_pixels(cv::Mat &skel)
       {
-        const int dr[4] = {-1, 0, 1, 0}, dc[4] = {0, 1, 0, -1};
-        for (int r = 0; r < skel.rows; ++r)
-          for (int c = 0; c < skel.cols; ++c)
-            {
-              if (!on(skel, r, c))
-                continue;
-              int n8 = 0;
-              for (int i = -1; i <= 1; ++i)
-                for (int j = -1; j <= 1; ++j)
-                  n8 += (i || j) && on(skel, r + i, c + j);
-              if (n8 != 2)
-                continue;
-              for (int k = 0; k < 4; ++k)
+        const int ring_r[8] = {-1, -1, 0, 1, 1, 1, 0, -1},
+                  ring_c[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+        for (bool changed = true; changed;)
+          {
+            changed = false;
+            for (int r = 0; r < skel.rows; ++r)
+              for (int c = 0; c < skel.cols; ++c)
                 {
-                  const int k2 = (k + 1) % 4;
-                  if (on(skel, r + dr[k], c + dc[k]) &&
-                      on(skel, r + dr[k2], c + dc[k2]))
+                  if (!on(skel, r, c))
+                    continue;
+                  bool nb[8];
+                  int  n = 0;
+                  for (int k = 0; k < 8; ++k)
+                    n += (nb[k] = on(skel, r + ring_r[k], c + ring_c[k]));
+                  if (n < 2)
+                    continue;
+                  if (n == 2)
+                    {
+                      // only an L: two orthogonal neighbours at a right angle
+                      bool l_corner = false;
+                      for (int k = 0; k < 8; k += 2)
+                        l_corner |= nb[k] && nb[(k + 2) % 8];
+                      if (!l_corner)
+                        continue;
+                    }
+                  // Connected groups of the neighbours: ring pixels k and
+                  // k+1 always touch; k and k+2 touch when k+1 is
+                  // orthogonal (k odd... i.e. corners around an edge pixel).
+                  int group[8], n_groups = 0;
+                  for (int k = 0; k < 8; ++k)
+                    group[k] = -1;
+                  for (int k = 0; k < 8; ++k)
+                    {
+                      if (!nb[k] || group[k] >= 0)
+                        continue;
+                      group[k] = n_groups;
+                      std::vector<int> todo{k};
+                      while (!todo.empty())
+                        {
+                          const int a = todo.back();
+                          todo.pop_back();
+                          for (int b = 0; b < 8; ++b)
+                            if (nb[b] && group[b] < 0 &&
+                                std::abs(ring_r[a] - ring_r[b]) <= 1 &&
+                                std::abs(ring_c[a] - ring_c[b]) <= 1)
+                              {
+                                group[b] = n_groups;
+                                todo.push_back(b);
+                              }
+                        }
+                      ++n_groups;
+                    }
+                  if (n_groups == 1)
                     {
                       skel.at<uchar>(r, c) = 0;
-                      break;
+                      changed              = true;
                     }
                 }
-            }
+          }
       }
     } // namespace
 
@@ -231,29 +268,40 @@ namespace squeal
     skeleton_length(const cv::Mat &skel, cv::Mat *per_pixel)
     {
       CV_Assert(skel.type() == CV_8U);
-      const double w_o = 0.948, w_d = 1.343;
+      // Vossepoel & Smeulders (CGIP 1982): even (orthogonal) and odd
+      // (diagonal) chain links and corners (changes of direction).
+      const double w_e = 0.980, w_o = 1.406, w_c = -0.091;
       cv::Mat      share = cv::Mat::zeros(skel.size(), CV_32F);
       double       total = 0.;
-      const auto   link = [&](int r0, int c0, int r1, int c1, double w) {
-        share.at<float>(r0, c0) += 0.5 * w;
-        share.at<float>(r1, c1) += 0.5 * w;
-        total += w;
+      const auto   linked = [&](int r, int c, int dr, int dc) {
+        if (!on(skel, r + dr, c + dc))
+          return false;
+        // a diagonal bridged by an orthogonal pixel is not a link
+        return dr == 0 || dc == 0 ||
+               (!on(skel, r + dr, c) && !on(skel, r, c + dc));
       };
       for (int r = 0; r < skel.rows; ++r)
         for (int c = 0; c < skel.cols; ++c)
           {
             if (!on(skel, r, c))
               continue;
-            if (on(skel, r, c + 1))
-              link(r, c, r, c + 1, w_o);
-            if (on(skel, r + 1, c))
-              link(r, c, r + 1, c, w_o);
-            if (on(skel, r + 1, c + 1) && !on(skel, r, c + 1) &&
-                !on(skel, r + 1, c))
-              link(r, c, r + 1, c + 1, w_d);
-            if (on(skel, r + 1, c - 1) && !on(skel, r, c - 1) &&
-                !on(skel, r + 1, c))
-              link(r, c, r + 1, c - 1, w_d);
+            int    n_links = 0, dir[8][2];
+            double own     = 0.;
+            for (int dr = -1; dr <= 1; ++dr)
+              for (int dc = -1; dc <= 1; ++dc)
+                if ((dr || dc) && linked(r, c, dr, dc))
+                  {
+                    // half of each link belongs to each end
+                    own += 0.5 * ((dr && dc) ? w_o : w_e);
+                    dir[n_links][0] = dr;
+                    dir[n_links][1] = dc;
+                    ++n_links;
+                  }
+            if (n_links == 2 && (dir[0][0] != -dir[1][0] ||
+                                 dir[0][1] != -dir[1][1]))
+              own += w_c;
+            share.at<float>(r, c) = static_cast<float>(own);
+            total += own;
           }
       if (per_pixel)
         *per_pixel = share;
@@ -306,7 +354,7 @@ namespace squeal
         mask.setTo(0, exclude);
       cv::Mat skel;
       cv::ximgproc::thinning(mask, skel, cv::ximgproc::THINNING_ZHANGSUEN);
-      remove_corners(skel);
+      remove_redundant_pixels(skel);
       cv::Mat per_pixel;
       skeleton_length(skel, &per_pixel);
       cv::Mat   labels, stats, centroids;

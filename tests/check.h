@@ -1,0 +1,52 @@
+// The relative-error check every test prints: a stable line for numdiff and
+// a failure count so that the test also exits non-zero.
+#ifndef squeal_tests_check_h
+#define squeal_tests_check_h
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <string>
+
+namespace test_tools
+{
+  inline int n_failures = 0;
+
+  /** Prints "name: ok" or "name: FAILED (value, reference, error)" on rank
+   *  0; ok when |value - reference| <= tolerance * scale. */
+  inline void
+  check(const std::string &name,
+        const double       value,
+        const double       reference,
+        const double       tolerance,
+        const double       scale = -1.)
+  {
+    const double s   = scale > 0 ? scale : std::abs(reference);
+    const double err = std::abs(value - reference) / (s > 0 ? s : 1.);
+    const bool   ok  = err <= tolerance;
+    if (!ok)
+      ++n_failures;
+    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        std::cout << name << ": " << (ok ? "ok" : "FAILED");
+        if (!ok)
+          std::cout << std::setprecision(12) << " (value " << value
+                    << ", reference " << reference << ", error " << err
+                    << " > " << tolerance << ")";
+        std::cout << std::endl;
+      }
+  }
+
+  inline int
+  finish()
+  {
+    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::cout << (n_failures == 0 ? "all checks passed" : "CHECKS FAILED")
+                << std::endl;
+    return n_failures == 0 ? 0 : 1;
+  }
+} // namespace test_tools
+
+#endif
