@@ -6,6 +6,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <iostream>
 #include <string>
@@ -37,6 +38,16 @@ namespace test_tools
                     << " > " << tolerance << ")";
         std::cout << std::endl;
       }
+  }
+
+  /** A stream for measured values worth seeing but not comparing (they
+   *  are not in the .output files): std::cerr when SQUEAL_VERBOSE is set,
+   *  else a sink. */
+  inline std::ostream &
+  verbose()
+  {
+    static std::ostream sink(nullptr);
+    return std::getenv("SQUEAL_VERBOSE") ? std::cerr : sink;
   }
 
   inline int

@@ -74,17 +74,17 @@ main(int argc, char **argv)
                  cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(11, 11)));
       CrackParameters cp;
       const CrackMap  cm = detect_cracks(s.image, cp, exclude);
-      std::cerr << w << "crack length " << cm.total_length << " / "
+      test_tools::verbose() << w << "crack length " << cm.total_length << " / "
                 << s.crack_length << ", F1 "
                 << skeleton_f1(cm.skeleton, s.centre_lines, 2.) << ", blobs "
                 << ex.areas.size() << ", area fraction " << ex.area_fraction
                 << " / " << s.blob_area / size.area() << std::endl;
-      if (std::getenv("SQUEAL_DEBUG"))
+      if (std::getenv("SQUEAL_VERBOSE"))
         {
           write_overlay("/tmp/overlay_" + std::to_string(int(width)) + ".png",
                         s.image, cm, ex);
           for (std::size_t k = 0; k < cm.lengths.size(); ++k)
-            std::cerr << "  crack at " << cm.centroids[k] << ": "
+            test_tools::verbose() << "  crack at " << cm.centroids[k] << ": "
                       << cm.lengths[k] << " px" << std::endl;
           cv::imwrite("/tmp/skel_" + std::to_string(int(width)) + ".png",
                       cm.skeleton);
@@ -146,7 +146,7 @@ main(int argc, char **argv)
                             found(1, 0) * p.x + found(1, 1) * p.y + found(1, 2));
         worst = std::max(worst, cv::norm(t - f));
       }
-    std::cerr << "registration error " << worst << " px" << std::endl;
+    test_tools::verbose() << "registration error " << worst << " px" << std::endl;
     check("registration error (window corners) below 0.1 px",
           std::max(worst, 0.1), 0.1, 0.);
   }

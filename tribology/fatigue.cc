@@ -11,10 +11,10 @@
 
 #include <squeal/tribology/fatigue.h>
 
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 namespace squeal
@@ -173,6 +173,73 @@ namespace squeal
       return d;
     }
 
+    namespace
+    {
+      using Point = std::array<double, 2>;
+
+      struct Circle
+      {
+        double x, y, r;
+        bool
+        contains(const Point &p) const
+        {
+          return std::hypot(p[0] - x, p[1] - y) <= r * (1. + 1e-12) + 1e-300;
+        }
+      };
+
+      Circle
+      circle_of(const Point &a, const Point &b)
+      {
+        return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]),
+                0.5 * std::hypot(a[0] - b[0], a[1] - b[1])};
+      }
+
+      Circle
+      circle_of(const Point &a, const Point &b, const Point &c)
+      {
+        const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0],
+                     cy = c[1] - a[1];
+        const double d = 2. * (bx * cy - by * cx);
+        if (std::abs(d) < 1e-300)
+          {
+            // collinear: the circle on the two farthest points
+            Circle best = circle_of(a, b);
+            for (const Circle &k : {circle_of(a, c), circle_of(b, c)})
+              if (k.r > best.r)
+                best = k;
+            return best;
+          }
+        const double ux = (cy * (bx * bx + by * by) - by * (cx * cx + cy * cy)) / d,
+                     uy = (bx * (cx * cx + cy * cy) - cx * (bx * bx + by * by)) / d;
+        return {a[0] + ux, a[1] + uy, std::hypot(ux, uy)};
+      }
+
+      // Radius of the minimum enclosing circle (Welzl's randomised
+      // incremental algorithm, expected linear time, in double precision:
+      // OpenCV's minEnclosingCircle works in float and pads the radius).
+      double
+      min_enclosing_radius(std::vector<Point> pts)
+      {
+        std::mt19937 rng(12345); // deterministic shuffle
+        std::shuffle(pts.begin(), pts.end(), rng);
+        Circle c{pts[0][0], pts[0][1], 0.};
+        for (std::size_t i = 1; i < pts.size(); ++i)
+          if (!c.contains(pts[i]))
+            {
+              c = {pts[i][0], pts[i][1], 0.};
+              for (std::size_t j = 0; j < i; ++j)
+                if (!c.contains(pts[j]))
+                  {
+                    c = circle_of(pts[i], pts[j]);
+                    for (std::size_t k = 0; k < j; ++k)
+                      if (!c.contains(pts[k]))
+                        c = circle_of(pts[i], pts[j], pts[k]);
+                  }
+            }
+        return c.r;
+      }
+    } // namespace
+
     CrosslandIndex
     crossland_index(const std::vector<double> &p,
                     const std::vector<double> &q,
@@ -194,23 +261,10 @@ namespace squeal
         scale = std::max({scale, std::abs(a * p[i]), std::abs(q[i])});
       if (scale > 0.)
         {
-          // OpenCV works in float: centre and scale the path first.
-          double cx = 0., cy = 0.;
+          std::vector<Point> path(p.size());
           for (std::size_t i = 0; i < p.size(); ++i)
-            {
-              cx += a * p[i];
-              cy += q[i];
-            }
-          cx /= p.size();
-          cy /= p.size();
-          std::vector<cv::Point2f> path(p.size());
-          for (std::size_t i = 0; i < p.size(); ++i)
-            path[i] = cv::Point2f(static_cast<float>((a * p[i] - cx) / scale),
-                                  static_cast<float>((q[i] - cy) / scale));
-          cv::Point2f centre;
-          float       radius = 0.f;
-          cv::minEnclosingCircle(path, centre, radius);
-          c.sqrt_j2_amplitude = radius * scale;
+            path[i] = {{a * p[i] / scale, q[i] / scale}};
+          c.sqrt_j2_amplitude = min_enclosing_radius(path) * scale;
         }
       const double p_min = *std::min_element(p.begin(), p.end());
       c.hydrostatic_max = -(1. + nu) / (3. * (1. - nu)) * p_min;

@@ -135,7 +135,7 @@ namespace squeal
      * sigma_zz = -p, sigma_xz = q. Its deviator lies in a plane where
      * sqrt(J2) = |(sqrt(3) a p, q)|, a = (1 - 2 nu) / (3 (1 - nu)); sqrt(J2,a)
      * is the radius of the minimum circumscribed circle of the path there
-     * (OpenCV's minEnclosingCircle, relative accuracy about 1e-6).
+     * (Welzl's algorithm in double precision).
      *
      * @param p, q histories of equal length [Pa]
      * @param poisson_ratio nu of the pad, 0 <= nu < 0.5
