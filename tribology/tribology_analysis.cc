@@ -790,8 +790,8 @@ namespace squeal
                   for (int k = nb(rng); k > 0; --k)
                     blobs.push_back({cv::Point2d(cx + (U(rng) - 0.5) * 0.4 * cell_px,
                                                  cy + (U(rng) - 0.5) * 0.4 * cell_px),
-                                     cv::Size2d((0.08 + 0.05 * U(rng)) * cell_px,
-                                                (0.06 + 0.03 * U(rng)) * cell_px),
+                                     cv::Size2d((0.15 + 0.1 * U(rng)) * cell_px,
+                                                (0.12 + 0.05 * U(rng)) * cell_px),
                                      180. * U(rng)});
                 }
             const SyntheticSurface surf = draw_synthetic_surface(
@@ -831,6 +831,11 @@ namespace squeal
         {
           ImageResult r;
           r.file = file;
+          const fs::path sidecar = fs::path(file).replace_extension(".prm");
+          if (!fs::exists(sidecar))
+            throw std::runtime_error(
+              "image '" + file + "' has no sidecar '" + sidecar.string() +
+              "' (pixel size and placement on the pad face)");
           const cv::Mat img = load_grey_image(file);
           r.placement       = read_image_placement(file, img);
           if (!r.placement.reference_image.empty())
@@ -865,9 +870,11 @@ namespace squeal
             }
           r.exfoliations = detect_exfoliations(img, prm.images.exfoliations);
           cv::Mat exclude;
-          const int grow = 2 * cvCeil(*std::max_element(
-                                 prm.images.cracks.scales.begin(),
-                                 prm.images.cracks.scales.end())) + 1;
+          // the ridge filter answers up to about its largest scale outside
+          // a blob's edge
+          const int grow = cvCeil(*std::max_element(
+                             prm.images.cracks.scales.begin(),
+                             prm.images.cracks.scales.end())) + 2;
           cv::dilate(r.exfoliations.mask, exclude,
                      cv::getStructuringElement(cv::MORPH_ELLIPSE,
                                                cv::Size(2 * grow + 1,
