@@ -99,6 +99,25 @@ main(int argc, char **argv)
             s.blob_area / size.area(), 0.02);
     }
 
+  // Few cracks on a noisy surface: the ridge filter's scale is not set by
+  // the noise (no false cracks), and the one crack is measured.
+  {
+    const SyntheticSurface none =
+      draw_synthetic_surface(size, {}, {}, 0.3, 0.3, 1.0, 0.03, 11);
+    const CrackMap cm0 = detect_cracks(none.image, CrackParameters());
+    test_tools::verbose() << "no cracks: " << cm0.total_length << " px found"
+                          << std::endl;
+    check("noise alone: under 20 px of false cracks",
+          std::min(cm0.total_length, 20.), cm0.total_length, 0.);
+    const SyntheticSurface one = draw_synthetic_surface(
+      size, {{{{200., 300.}, {420., 380.}}, 3.}}, {}, 0.3, 0.3, 1.0, 0.03, 12);
+    const CrackMap cm1 = detect_cracks(one.image, CrackParameters());
+    test_tools::verbose() << "one crack: " << cm1.total_length << " / "
+                          << one.crack_length << std::endl;
+    check("one crack on noise: length within 5 %", cm1.total_length,
+          one.crack_length, 0.05);
+  }
+
   // Skeleton length of digital straight lines at any angle (Kulpa weights).
   for (const double deg : {0., 10., 22.5, 30., 45., 60., 80.})
     {

@@ -131,7 +131,8 @@ namespace squeal
     frangi_vesselness(const cv::Mat             &image,
                       const std::vector<double> &sigmas,
                       const double               beta,
-                      const bool                 dark)
+                      const bool                 dark,
+                      const double               noise_floor)
     {
       CV_Assert(image.type() == CV_32F);
       cv::Mat best = cv::Mat::zeros(image.size(), CV_32F);
@@ -147,7 +148,8 @@ namespace squeal
           cv::Sobel(g, dyy, CV_32F, 0, 2, 3, f, 0., cv::BORDER_REFLECT);
           cv::Sobel(g, dxy, CV_32F, 1, 1, 3, f, 0., cv::BORDER_REFLECT);
           cv::Mat l1(image.size(), CV_32F), l2(image.size(), CV_32F);
-          float   s_max = 0.f;
+          std::vector<float> norms;
+          norms.reserve(image.total());
           for (int r = 0; r < image.rows; ++r)
             for (int c = 0; c < image.cols; ++c)
               {
@@ -159,8 +161,23 @@ namespace squeal
                   std::swap(m1, m2);
                 l1.at<float>(r, c) = m1;
                 l2.at<float>(r, c) = m2;
-                s_max = std::max(s_max, std::sqrt(m1 * m1 + m2 * m2));
+                norms.push_back(std::sqrt(m1 * m1 + m2 * m2));
               }
+          // Frangi's c is half the largest Hessian norm; a few strong edges
+          // (grain boundaries, blobs) would then hide faint cracks, so the
+          // 99th percentile stands in for the maximum. Where an image has
+          // few cracks that percentile is noise, so structure below a noise
+          // floor (a multiple of the median norm, which the background
+          // sets) is no ridge at all.
+          std::vector<float> sorted(norms);
+          std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2,
+                           sorted.end());
+          const float floor =
+            static_cast<float>(noise_floor) * sorted[sorted.size() / 2];
+          std::nth_element(sorted.begin(),
+                           sorted.begin() + sorted.size() * 99 / 100,
+                           sorted.end());
+          const float s_max = std::max(sorted[sorted.size() * 99 / 100], floor);
           if (s_max <= 0.f)
             continue;
           const double c2 = 2. * std::pow(0.5 * s_max, 2),
@@ -173,6 +190,8 @@ namespace squeal
                 if ((dark && m2 <= 0.f) || (!dark && m2 >= 0.f))
                   continue;
                 const double rb = m1 / m2, ss = m1 * m1 + m2 * m2;
+                if (ss < double(floor) * floor)
+                  continue;
                 const float  v = static_cast<float>(
                   std::exp(-rb * rb / b2) * (1. - std::exp(-ss / c2)));
                 best.at<float>(r, c) = std::max(best.at<float>(r, c), v);
@@ -347,7 +366,8 @@ namespace squeal
                   const cv::Mat         &exclude)
     {
       const cv::Mat flat = flatten_background(image, par.background_degree);
-      const cv::Mat v = frangi_vesselness(flat, par.scales, par.beta, par.dark);
+      const cv::Mat v = frangi_vesselness(flat, par.scales, par.beta, par.dark,
+                                          par.noise_floor);
       CrackMap      out;
       cv::Mat       mask = v > otsu_threshold(v);
       if (!exclude.empty())

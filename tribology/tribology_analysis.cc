@@ -254,6 +254,9 @@ namespace squeal
         "this file's folder, each with a sidecar of the same name ending in "
         ".prm (pixel size and placement on the pad face); 'synthetic' draws "
         "fields whose crack density follows the damage map; empty: none.");
+      prm.declare_entry("Sidecar folder", "", Anything(),
+                        "Folder of the sidecars, relative to this file's "
+                        "folder; empty: beside each image.");
       prm.declare_entry("Crack contrast", "dark", Selection("dark|bright"),
                         "Cracks are darker (or brighter) than the surface.");
       prm.declare_entry("Crack scales", "1, 1.5, 2, 3", List(Double(0.3, 50.)),
@@ -261,6 +264,11 @@ namespace squeal
                         "about the crack half-widths.");
       prm.declare_entry("Frangi beta", "0.5", Double(0.05, 5.),
                         "Blob suppression of the Frangi filter [-].");
+      prm.declare_entry("Ridge noise floor", "3", Double(0.),
+                        "Ridges weaker than this many times the median "
+                        "Hessian norm of the image are noise or texture "
+                        "[-]: lower it for smooth images with faint cracks, "
+                        "raise it for noisy ones.");
       prm.declare_entry("Background degree", "2", Integer(0, 4),
                         "Degree of the polynomial that flattens uneven "
                         "brightness.");
@@ -289,9 +297,11 @@ namespace squeal
     {
       prm.enter_subsection("Images");
       files = dealii::Utilities::split_string_list(prm.get("Files"));
+      sidecar_folder = prm.get("Sidecar folder");
       cracks.dark   = prm.get("Crack contrast") == "dark";
       cracks.scales = parse_doubles(prm.get("Crack scales"), "Images/Crack scales");
       cracks.beta   = prm.get_double("Frangi beta");
+      cracks.noise_floor = prm.get_double("Ridge noise floor");
       cracks.background_degree = prm.get_integer("Background degree");
       cracks.min_length        = prm.get_double("Minimum crack length");
       exfoliations.dark = prm.get("Exfoliation contrast") == "dark";
@@ -435,11 +445,17 @@ namespace squeal
         }
     }
 
-    ImagePlacement
-    read_image_placement(const std::string &image, const cv::Mat &pixels)
+    std::string
+    sidecar_of(const std::string &image, const std::string &folder)
     {
-      const std::string sidecar =
-        fs::path(image).replace_extension(".prm").string();
+      const fs::path beside = fs::path(image).replace_extension(".prm");
+      return folder.empty() ? beside.string() :
+                              (fs::path(folder) / beside.filename()).string();
+    }
+
+    ImagePlacement
+    read_image_placement(const std::string &sidecar, const cv::Mat &pixels)
+    {
       ParameterHandler p;
       p.declare_entry("Pixel size", "0", Double(0.),
                       "m/px; 0: read the scale bar");
@@ -827,24 +843,28 @@ namespace squeal
         for (const auto &f : prm.images.files)
           image_files.push_back(resolve(prm.base_directory, f));
 
+      const std::string folder =
+        prm.images.sidecar_folder.empty() ?
+          "" :
+          resolve(prm.base_directory, prm.images.sidecar_folder);
       for (const std::string &file : image_files)
         {
           ImageResult r;
-          r.file = file;
-          const fs::path sidecar = fs::path(file).replace_extension(".prm");
+          r.file                    = file;
+          const std::string sidecar = sidecar_of(file, folder);
           if (!fs::exists(sidecar))
             throw std::runtime_error(
-              "image '" + file + "' has no sidecar '" + sidecar.string() +
+              "image '" + file + "' has no sidecar '" + sidecar +
               "' (pixel size and placement on the pad face)");
           const cv::Mat img = load_grey_image(file);
-          r.placement       = read_image_placement(file, img);
+          r.placement       = read_image_placement(sidecar, img);
           if (!r.placement.reference_image.empty())
             {
               // Refine: reference pixels -> image pixels by ECC, starting
               // from the two sidecars' placements.
               const cv::Mat ref = load_grey_image(r.placement.reference_image);
-              const ImagePlacement rp =
-                read_image_placement(r.placement.reference_image, ref);
+              const ImagePlacement rp = read_image_placement(
+                sidecar_of(r.placement.reference_image, folder), ref);
               cv::Matx33d Ai = cv::Matx33d::eye(), Ar = cv::Matx33d::eye();
               for (int i = 0; i < 2; ++i)
                 for (int j = 0; j < 3; ++j)

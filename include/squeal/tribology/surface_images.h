@@ -48,14 +48,19 @@ namespace squeal
      * V = exp(-R_B^2 / (2 beta^2)) (1 - exp(-S^2 / (2 c^2))),
      * R_B = lambda_1 / lambda_2, S = |lambda|, |lambda_1| <= |lambda_2| the
      * eigenvalues of the scale-normalised Hessian (sigma^2 times Sobel
-     * second derivatives of the Gaussian-smoothed image), c half the largest
-     * S at each scale (Frangi et al. 1998, eq. 15). Returns CV_32F in [0, 1].
+     * second derivatives of the Gaussian-smoothed image), c half the 99th
+     * percentile of S at each scale (Frangi et al. 1998, eq. 15, take the
+     * maximum; a few strong edges would then hide faint cracks). Pixels
+     * whose S lies below @p noise_floor times the median S of the image
+     * (the background's noise or texture) get V = 0. Returns CV_32F in
+     * [0, 1].
      */
     cv::Mat
     frangi_vesselness(const cv::Mat             &image,
                       const std::vector<double> &sigmas,
                       double                     beta,
-                      bool                       dark);
+                      bool                       dark,
+                      double                     noise_floor);
 
     /**
      * Length of a one-pixel-wide skeleton (8-connected, non-zero pixels),
@@ -78,6 +83,9 @@ namespace squeal
       bool         dark = true;         ///< cracks darker than the surface
       unsigned int background_degree = 2; ///< see flatten_background()
       double       min_length = 15.;    ///< shorter skeleton parts dropped [px]
+      /// ridges weaker than this many times the median Hessian norm are
+      /// noise or texture (see frangi_vesselness())
+      double       noise_floor = 3.;
     };
 
     /** What the crack detector found in one image. */

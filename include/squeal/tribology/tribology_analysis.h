@@ -72,6 +72,9 @@ namespace squeal
       /// image files relative to the .prm file (each with a sidecar of the
       /// same name and the extension .prm), `synthetic`, or empty (none)
       std::vector<std::string> files{"synthetic"};
+      /// folder of the sidecars, relative to the .prm file; empty: beside
+      /// each image (for images in a read-only folder)
+      std::string              sidecar_folder;
       CrackParameters          cracks;
       ExfoliationParameters    exfoliations;
       double micro_max_area = 1e-10; ///< m^2: micro-exfoliations below
@@ -153,11 +156,16 @@ namespace squeal
     };
 
     /**
-     * Reads the sidecar of @p image (same path, extension `.prm`).
+     * Reads the placement of the image @p pixels from @p sidecar (a `.prm`).
      * @throws std::runtime_error naming the sidecar and the parameter.
      */
     ImagePlacement
-    read_image_placement(const std::string &image, const cv::Mat &pixels);
+    read_image_placement(const std::string &sidecar, const cv::Mat &pixels);
+
+    /** The sidecar of @p image: its path with the extension `.prm`, or that
+     * file name in @p folder if it is not empty. */
+    std::string
+    sidecar_of(const std::string &image, const std::string &folder);
 
     /** What one image gave. */
     struct ImageResult
