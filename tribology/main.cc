@@ -1,6 +1,6 @@
 // squeal-tribology: fatigue-damage maps from contact-stress histories, crack
 // and exfoliation maps from SEM images, and their correlation. Usage:
-//   squeal-tribology [--overwrite] FILE.prm   run
+//   squeal-tribology [--overwrite] [--output DIR] FILE.prm   run
 //   squeal-tribology --validate FILE.prm      parse and report, run nothing
 //   squeal-tribology --print-parameters       every parameter: default, range, help
 
@@ -16,8 +16,8 @@ main(int argc, char **argv)
 {
   const std::vector<std::string> args(argv + 1, argv + argc);
   const std::string              usage =
-    "usage: squeal-tribology [--overwrite] FILE.prm | --validate FILE.prm | "
-    "--print-parameters";
+    "usage: squeal-tribology [--overwrite] [--output DIR] FILE.prm | "
+    "--validate FILE.prm | --print-parameters";
   try
     {
       squeal::tribology::TribologyParameters prm;
@@ -29,12 +29,18 @@ main(int argc, char **argv)
           return 0;
         }
       bool        validate = false, overwrite = false;
-      std::string file;
-      for (const auto &a : args)
-        if (a == "--validate")
+      std::string file, output;
+      for (std::size_t i = 0; i < args.size(); ++i)
+        if (const std::string &a = args[i]; a == "--validate")
           validate = true;
         else if (a == "--overwrite")
           overwrite = true;
+        else if (a == "--output")
+          {
+            if (i + 1 == args.size() || args[i + 1].empty())
+              throw std::runtime_error("--output needs a directory\n" + usage);
+            output = args[++i];
+          }
         else if (!a.empty() && a[0] == '-')
           throw std::runtime_error("unknown option '" + a + "'\n" + usage);
         else if (file.empty())
@@ -46,6 +52,8 @@ main(int argc, char **argv)
         throw std::runtime_error("no parameter file given\n" + usage);
       prm.read(handler, file);
       prm.output.overwrite = prm.output.overwrite || overwrite;
+      if (!output.empty())
+        prm.output.directory = output;
       if (validate)
         {
           std::cout << file << ": valid (contact history '"
