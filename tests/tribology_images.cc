@@ -7,6 +7,7 @@
 // and fiducial placements are exact.
 
 #include <squeal/tribology/surface_images.h>
+#include <squeal/tribology/tribology_analysis.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -168,6 +169,43 @@ main(int argc, char **argv)
     test_tools::verbose() << "registration error " << worst << " px" << std::endl;
     check("registration error (window corners) below 0.1 px",
           std::max(worst, 0.1), 0.1, 0.);
+
+    // The same through the placements on the pad face: the reference at
+    // 5 um/px is trusted, the image's sidecar is 2.5 px off; the refined
+    // placement maps the image's corners within 0.1 px of the truth.
+    ImagePlacement rp;
+    rp.pixel_size    = 5e-6;
+    rp.pixel_to_face = cv::Matx23d(5e-6, 0., -1e-3, 0., -5e-6, 2e-3);
+    // truth: face = A_r W^-1 (x, 1)
+    cv::Matx33d Ar = cv::Matx33d::eye(), Wm = cv::Matx33d::eye();
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 3; ++j)
+        {
+          Ar(i, j) = rp.pixel_to_face(i, j);
+          Wm(i, j) = Wc(i, j);
+        }
+    const cv::Matx33d truth = Ar * Wm.inv();
+    ImagePlacement    guess_placement = rp;
+    guess_placement.pixel_to_face     = cv::Matx23d(truth.val);
+    guess_placement.pixel_to_face(0, 2) += 2.5 * 5e-6;
+    guess_placement.pixel_to_face(1, 2) -= 1.0 * 5e-6;
+    const ImagePlacement refined =
+      refine_placement(image, guess_placement, ref, rp);
+    double face_error = 0.;
+    for (const cv::Point2d p : {cv::Point2d(0, 0), cv::Point2d(399, 0),
+                                cv::Point2d(0, 399), cv::Point2d(399, 399)})
+      {
+        const cv::Matx23d &A = refined.pixel_to_face;
+        const double ds = A(0, 0) * p.x + A(0, 1) * p.y + A(0, 2) -
+                          (truth(0, 0) * p.x + truth(0, 1) * p.y + truth(0, 2)),
+                     dr = A(1, 0) * p.x + A(1, 1) * p.y + A(1, 2) -
+                          (truth(1, 0) * p.x + truth(1, 1) * p.y + truth(1, 2));
+        face_error = std::max(face_error, std::hypot(ds, dr) / 5e-6);
+      }
+    test_tools::verbose() << "placement error " << face_error << " px"
+                          << std::endl;
+    check("refined placement on the pad face within 0.1 px",
+          std::max(face_error, 0.1), 0.1, 0.);
   }
 
   // Scale bar: a 240 px white bar of 50 um -> 50e-6 / 240 m/px.

@@ -544,6 +544,31 @@ namespace squeal
         }
     }
 
+    ImagePlacement
+    refine_placement(const cv::Mat        &image,
+                     const ImagePlacement &placement,
+                     const cv::Mat        &reference,
+                     const ImagePlacement &reference_placement)
+    {
+      const auto square = [](const cv::Matx23d &A) {
+        cv::Matx33d M = cv::Matx33d::eye();
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < 3; ++j)
+            M(i, j) = A(i, j);
+        return M;
+      };
+      const cv::Matx33d Ai = square(placement.pixel_to_face),
+                        Ar = square(reference_placement.pixel_to_face);
+      // reference pixel -> face -> image pixel
+      const cv::Matx33d W0 = Ai.inv() * Ar;
+      const cv::Matx23d W =
+        refine_registration(image, reference, cv::Matx23d(W0.val), 5);
+      const cv::Matx33d refined = Ar * square(W).inv();
+      ImagePlacement    out     = placement;
+      out.pixel_to_face         = cv::Matx23d(refined.val);
+      return out;
+    }
+
     // ---------------------------------------------------------------------
     // The analysis
 
@@ -865,22 +890,7 @@ namespace squeal
               const cv::Mat ref = load_grey_image(r.placement.reference_image);
               const ImagePlacement rp = read_image_placement(
                 sidecar_of(r.placement.reference_image, folder), ref);
-              cv::Matx33d Ai = cv::Matx33d::eye(), Ar = cv::Matx33d::eye();
-              for (int i = 0; i < 2; ++i)
-                for (int j = 0; j < 3; ++j)
-                  {
-                    Ai(i, j) = r.placement.pixel_to_face(i, j);
-                    Ar(i, j) = rp.pixel_to_face(i, j);
-                  }
-              const cv::Matx33d W0 = Ai.inv() * Ar;
-              const cv::Matx23d W  = refine_registration(
-                img, ref, cv::Matx23d(W0.val), 5);
-              cv::Matx33d W3 = cv::Matx33d::eye();
-              for (int i = 0; i < 2; ++i)
-                for (int j = 0; j < 3; ++j)
-                  W3(i, j) = W(i, j);
-              const cv::Matx33d refined = Ar * W3.inv();
-              r.placement.pixel_to_face = cv::Matx23d(refined.val);
+              r.placement = refine_placement(img, r.placement, ref, rp);
               std::cout << "  " << fs::path(file).filename().string()
                         << ": placement refined by ECC against "
                         << fs::path(r.placement.reference_image)

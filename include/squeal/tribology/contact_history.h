@@ -46,11 +46,13 @@ namespace squeal
       std::vector<std::vector<double>> slip_velocity; ///< [node][sample], m/s
       std::vector<std::vector<int>>    status;        ///< [node][sample]
 
+      /** Number of slave (pad-face) nodes. */
       std::size_t
       n_nodes() const
       {
         return coordinates.size();
       }
+      /** Number of samples per node. */
       std::size_t
       n_samples() const
       {

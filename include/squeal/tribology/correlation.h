@@ -38,11 +38,13 @@ namespace squeal
       GridMap(unsigned int nx, unsigned int ny, double x0, double y0,
               double h);
 
+      /** Value of cell (i, j), i < nx along s, j < ny along r. */
       double &
       operator()(unsigned int i, unsigned int j)
       {
         return values[i + nx * j];
       }
+      /** Value of cell (i, j). */
       double
       operator()(unsigned int i, unsigned int j) const
       {

@@ -34,7 +34,9 @@ namespace squeal
       /// damage analysis (images only).
       std::string file = "synthetic";
       double      start_time = 0.; ///< s, earlier samples (the ramp) dropped
+      /** Declares the subsection's entries with defaults, ranges, help. */
       void declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error on inconsistent values. */
       void parse_parameters(ParameterHandler &prm);
     };
 
@@ -50,7 +52,9 @@ namespace squeal
       double pad_size = 0.01;          ///< m
       double pad_radius = 0.1;         ///< m
       double trailing_amplitude = 0.1; ///< oscillation at the trailing edge
+      /** Declares the subsection's entries with defaults, ranges, help. */
       void declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error on inconsistent values. */
       void parse_parameters(ParameterHandler &prm);
     };
 
@@ -62,7 +66,9 @@ namespace squeal
       double poisson_ratio = 0.3;    ///< pad, -
       std::vector<double> sensitivity_k{0.1, 0.2, 0.3, 0.4, 0.5};
       std::vector<double> sensitivity_m{5., 8., 10., 12., 15.};
+      /** Declares the subsection's entries with defaults, ranges, help. */
       void declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error on inconsistent values. */
       void parse_parameters(ParameterHandler &prm);
     };
 
@@ -79,7 +85,9 @@ namespace squeal
       ExfoliationParameters    exfoliations;
       double micro_max_area = 1e-10; ///< m^2: micro-exfoliations below
       double macro_min_area = 1e-6;  ///< m^2: macro-exfoliations above
+      /** Declares the subsection's entries with defaults, ranges, help. */
       void declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error on inconsistent values. */
       void parse_parameters(ParameterHandler &prm);
     };
 
@@ -92,7 +100,9 @@ namespace squeal
       double cracks_per_cell = 4.;       ///< mean count where damage is largest
       double blobs_per_cell = 0.3;       ///< mean count where damage is largest
       unsigned int seed = 1;
+      /** Declares the subsection's entries with defaults, ranges, help. */
       void declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error on inconsistent values. */
       void parse_parameters(ParameterHandler &prm);
     };
 
@@ -103,7 +113,9 @@ namespace squeal
       /// mm/mm^2: cells with a larger crack length per area are "cracked";
       /// a negative value takes the median over the imaged cells
       double cracked_threshold = -1.;
+      /** Declares the subsection's entries with defaults, ranges, help. */
       void declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error on inconsistent values. */
       void parse_parameters(ParameterHandler &prm);
     };
 
@@ -113,7 +125,9 @@ namespace squeal
       std::string directory = "output/tribology";
       bool        overwrite = false;
       bool        plots = true; ///< PNGs through scripts/plot_tribology.py
+      /** Declares the subsection's entries with defaults, ranges, help. */
       void declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error on inconsistent values. */
       void parse_parameters(ParameterHandler &prm);
     };
 
@@ -129,7 +143,10 @@ namespace squeal
       TribologyOutput     output;
       std::string         base_directory = "."; ///< folder of the .prm file
 
+      /** Declares every subsection. */
       void declare_parameters(ParameterHandler &prm) const;
+      /** Reads every subsection. @throws std::runtime_error on
+       * inconsistent values (naming the parameter). */
       void parse_parameters(ParameterHandler &prm);
       /**
        * Declares, parses @p filename and checks the values.
@@ -167,13 +184,28 @@ namespace squeal
     std::string
     sidecar_of(const std::string &image, const std::string &folder);
 
+    /**
+     * Refines the placement of @p image on the pad face by ECC registration
+     * against @p reference, whose placement is trusted: the first guess of
+     * the reference-to-image pixel map comes from the two placements, ECC
+     * refines it (refine_registration()), and the image's pixel-to-face map
+     * becomes the reference's composed with its inverse.
+     * @return the refined placement (pixel size unchanged).
+     * @throws std::runtime_error if ECC does not converge.
+     */
+    ImagePlacement
+    refine_placement(const cv::Mat        &image,
+                     const ImagePlacement &placement,
+                     const cv::Mat        &reference,
+                     const ImagePlacement &reference_placement);
+
     /** What one image gave. */
     struct ImageResult
     {
-      std::string    file;
-      ImagePlacement placement;
-      CrackMap       cracks;
-      ExfoliationMap exfoliations;
+      std::string    file;         ///< path of the image
+      ImagePlacement placement;    ///< on the pad face
+      CrackMap       cracks;       ///< see detect_cracks()
+      ExfoliationMap exfoliations; ///< see detect_exfoliations()
       unsigned int   micro = 0, meso = 0, macro = 0; ///< blob counts by class
       double micro_area = 0., meso_area = 0., macro_area = 0.; ///< m^2
     };
@@ -186,6 +218,8 @@ namespace squeal
     class TribologyAnalysis
     {
     public:
+      /** Keeps references to @p prm and to the @p handler it was read with
+       * (echoed into the output folder as parameters.prm). */
       TribologyAnalysis(const TribologyParameters &prm,
                         const ParameterHandler    &handler);
       /** Runs everything; results in Output/Directory (written to
