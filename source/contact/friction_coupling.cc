@@ -13,6 +13,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <squeal/contact/friction_coupling.h>
+#include <squeal/contact/polygon.h>
 #include <squeal/geometry/tribobrake_mesh.h>
 
 #include <array>
@@ -25,28 +26,9 @@ namespace squeal
   namespace contact
   {
     using namespace dealii;
-    using Polygon = std::vector<Point<2>>;
 
     namespace
     {
-      double
-      cross(const Point<2> &o, const Point<2> &a, const Point<2> &b)
-      {
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-      }
-
-      double
-      signed_area(const Polygon &p)
-      {
-        double a = 0;
-        for (unsigned int i = 0; i < p.size(); ++i)
-          {
-            const auto &u = p[i], &v = p[(i + 1) % p.size()];
-            a += u[0] * v[1] - v[0] * u[1];
-          }
-        return a / 2;
-      }
-
       // The (x, y) outline of a face at z = 0, counter-clockwise.
       Polygon
       face_outline(const typename DoFHandler<3>::face_iterator &face)
@@ -55,33 +37,7 @@ namespace squeal
         Polygon p;
         for (const unsigned int v : {0u, 1u, 3u, 2u})
           p.emplace_back(face->vertex(v)[0], face->vertex(v)[1]);
-        if (signed_area(p) < 0)
-          std::reverse(p.begin(), p.end());
-        return p;
-      }
-
-      // Sutherland-Hodgman: the part of convex `subject` inside convex `clip`
-      // (both counter-clockwise).
-      Polygon
-      clip_polygon(const Polygon &subject, const Polygon &clip)
-      {
-        Polygon out = subject;
-        for (unsigned int e = 0; e < clip.size() && !out.empty(); ++e)
-          {
-            const Point<2> a = clip[e], b = clip[(e + 1) % clip.size()];
-            const Polygon  in = out;
-            out.clear();
-            for (unsigned int i = 0; i < in.size(); ++i)
-              {
-                const Point<2> p = in[i], q = in[(i + 1) % in.size()];
-                const double   cp = cross(a, b, p), cq = cross(a, b, q);
-                if (cp >= 0)
-                  out.push_back(p);
-                if ((cp >= 0) != (cq >= 0))
-                  out.push_back(p + (q - p) * (cp / (cp - cq)));
-              }
-          }
-        return out;
+        return counter_clockwise(p);
       }
 
       struct FaceRef

@@ -16,6 +16,8 @@
 #include <deal.II/distributed/shared_tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
@@ -32,6 +34,20 @@ namespace squeal
   {
     using PETScMatrix = dealii::PETScWrappers::MPI::SparseMatrix;
     using PETScVector = dealii::PETScWrappers::MPI::Vector;
+
+    /**
+     * Adds to @p cell_k the stiffness of isotropic linear elasticity (Lame
+     * constants @p lambda, @p mu [Pa]) and to @p cell_m the consistent mass
+     * (@p density [kg/m^3]) of the cell @p fe_values was last reinit'ed on
+     * (an FE_Q^3 system; both n x n, n its DoFs per cell; N/m and kg).
+     */
+    void
+    add_cell_elasticity(const dealii::FEValues<3>  &fe_values,
+                        double                      lambda,
+                        double                      mu,
+                        double                      density,
+                        dealii::FullMatrix<double> &cell_k,
+                        dealii::FullMatrix<double> &cell_m);
 
     /**
      * The matrix parts of a linear model (n x n each; mass parts in kg,

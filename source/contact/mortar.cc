@@ -1,0 +1,328 @@
+// Dual mortar operators between two contact surfaces (see mortar.h).
+//
+// The slave side carries the Lagrange multipliers. Its dual shape functions
+// are built face by face from the face mass matrix (psi = D_e M_e^-1 phi), so
+// that D is diagonal and the multipliers can be condensed node by node. The
+// mixed matrix M is integrated segment by segment: every slave face is
+// clipped against the projection of each master face onto the slave face's
+// plane, the overlap is cut into triangles and each carries a simplex Gauss
+// rule. On planar faces this is exact, which is what the patch test needs.
+
+#include <deal.II/base/geometry_info.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <squeal/contact/mortar.h>
+#include <squeal/contact/polygon.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace contact
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      // One contact face: its cell, the face's nodes (node number in the
+      // surface, scalar shape-function index in the cell) and its plane.
+      struct Face
+      {
+        DoFHandler<3>::active_cell_iterator cell;
+        unsigned int                        face_no;
+        std::vector<std::pair<unsigned int, unsigned int>> nodes;
+        Point<3>                            centre;
+        Tensor<1, 3>                        normal; // outward, unit
+        std::vector<Point<3>>               outline; // vertices, cyclic
+        BoundingBox<3>                      box;
+      };
+
+      // The faces with @p id and their nodes (numbered on first sight).
+      std::vector<Face>
+      collect(const DoFHandler<3>            &dofs,
+              const Mapping<3>               &mapping,
+              const types::boundary_id        id,
+              std::vector<Point<3>>          &points,
+              std::vector<NodeDofs>          &node_dofs)
+      {
+        const FiniteElement<3> &fe = dofs.get_fe();
+        std::map<types::global_dof_index, unsigned int> node_of;
+        std::vector<types::global_dof_index>            cell_dofs(
+          fe.n_dofs_per_cell());
+        std::vector<Face> faces;
+        const QGauss<2>   centre_rule(1);
+        FEFaceValues<3>   centre_values(mapping, fe, centre_rule,
+                                      update_normal_vectors |
+                                        update_quadrature_points);
+        for (const auto &cell : dofs.active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            {
+              if (!cell->face(f)->at_boundary() ||
+                  cell->face(f)->boundary_id() != id)
+                continue;
+              Face face{cell, f, {}, {}, {}, {}, {}};
+              cell->get_dof_indices(cell_dofs);
+              // the node of every component-0 DoF on this face
+              for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+                {
+                  if (fe.system_to_component_index(i).first != 0 ||
+                      !fe.has_support_on_face(i, f))
+                    continue;
+                  const unsigned int scalar = fe.system_to_component_index(i).second;
+                  auto [it, added] =
+                    node_of.emplace(cell_dofs[i], points.size());
+                  if (added)
+                    {
+                      NodeDofs d;
+                      for (unsigned int j = 0; j < fe.n_dofs_per_cell(); ++j)
+                        if (fe.system_to_component_index(j).second == scalar)
+                          d[fe.system_to_component_index(j).first] =
+                            cell_dofs[j];
+                      node_dofs.push_back(d);
+                      points.push_back(mapping.transform_unit_to_real_cell(
+                        cell, fe.unit_support_point(i)));
+                    }
+                  face.nodes.emplace_back(it->second, scalar);
+                }
+              centre_values.reinit(cell, f);
+              face.centre = centre_values.quadrature_point(0);
+              face.normal = centre_values.normal_vector(0);
+              for (const unsigned int v : {0u, 1u, 3u, 2u})
+                face.outline.push_back(cell->face(f)->vertex(v));
+              face.box = BoundingBox<3>(face.outline);
+              faces.push_back(face);
+            }
+        return faces;
+      }
+
+      // Unit coordinates of x in the cell, snapped onto the face's plane of
+      // the reference cell (the point lies on the face up to the face's
+      // curvature).
+      Point<3>
+      unit_on_face(const Mapping<3>                          &mapping,
+                   const DoFHandler<3>::active_cell_iterator &cell,
+                   const unsigned int                         face_no,
+                   const Point<3>                            &x)
+      {
+        Point<3> u = mapping.transform_real_to_unit_cell(cell, x);
+        u[face_no / 2] = face_no % 2;
+        return u;
+      }
+    } // namespace
+
+    Vector<double>
+    MortarOperators::weighted_gaps(const Vector<double> &u) const
+    {
+      Vector<double> g(n_slave());
+      for (unsigned int j = 0; j < n_slave(); ++j)
+        g[j] = gap0[j] - weighted_slip(j, u, normals[j]);
+      return g;
+    }
+
+    double
+    MortarOperators::weighted_slip(const unsigned int    j,
+                                   const Vector<double> &u,
+                                   const Tensor<1, 3>   &dir) const
+    {
+      double s = 0.;
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          s += dir[c] * D[j] * u[slave_dofs[j][c]];
+          for (const auto &[l, m] : M[j])
+            s -= dir[c] * m * u[master_dofs[l][c]];
+        }
+      return s;
+    }
+
+    MortarOperators
+    build_mortar_operators(const DoFHandler<3>     &dofs,
+                           const Mapping<3>        &mapping,
+                           const types::boundary_id slave_id,
+                           const types::boundary_id master_id,
+                           const double             search_distance,
+                           const unsigned int       n_points)
+    {
+      MortarOperators op;
+      const std::vector<Face> slave =
+        collect(dofs, mapping, slave_id, op.slave_points, op.slave_dofs);
+      const std::vector<Face> master =
+        collect(dofs, mapping, master_id, op.master_points, op.master_dofs);
+      if (slave.empty() || master.empty())
+        throw std::runtime_error(
+          "contact: the " + std::string(slave.empty() ? "slave" : "master") +
+          " surface (boundary id " +
+          std::to_string(slave.empty() ? slave_id : master_id) +
+          ") has no faces");
+      const unsigned int n_s = op.n_slave();
+      op.D.reinit(n_s);
+      op.gap0.reinit(n_s);
+      op.M.assign(n_s, {});
+      op.normals.assign(n_s, Tensor<1, 3>());
+      std::vector<std::map<unsigned int, double>> M(n_s);
+
+      const FiniteElement<3> &fe     = dofs.get_fe();
+      const FiniteElement<3> &scalar = fe.base_element(0);
+      const QGauss<2>         face_rule(scalar.degree + 2);
+      FEFaceValues<3>         fv(mapping, scalar, face_rule,
+                         update_values | update_JxW_values |
+                           update_normal_vectors);
+      const QGaussSimplex<2> tri(std::min(std::max(n_points, 1u), 4u));
+
+      unsigned int faces_in_reach = 0;
+      for (const Face &sf : slave)
+        {
+          // Dual basis of this face: A = D_e M_e^-1.
+          const unsigned int n_f = sf.nodes.size();
+          fv.reinit(typename Triangulation<3>::cell_iterator(sf.cell),
+                    sf.face_no);
+          FullMatrix<double> Me(n_f, n_f), A(n_f, n_f), Mi(n_f, n_f);
+          std::vector<double> De(n_f, 0.);
+          for (unsigned int q = 0; q < face_rule.size(); ++q)
+            {
+              op.slave_area += fv.JxW(q);
+              for (unsigned int a = 0; a < n_f; ++a)
+                {
+                  const double pa = fv.shape_value(sf.nodes[a].second, q);
+                  De[a] += pa * fv.JxW(q);
+                  op.normals[sf.nodes[a].first] +=
+                    pa * fv.JxW(q) * fv.normal_vector(q);
+                  for (unsigned int b = 0; b < n_f; ++b)
+                    Me(a, b) +=
+                      pa * fv.shape_value(sf.nodes[b].second, q) * fv.JxW(q);
+                }
+            }
+          Mi.invert(Me);
+          for (unsigned int a = 0; a < n_f; ++a)
+            {
+              op.D[sf.nodes[a].first] += De[a];
+              for (unsigned int b = 0; b < n_f; ++b)
+                A(a, b) = De[a] * Mi(a, b);
+            }
+
+          // The slave face's plane: origin, two tangents.
+          const Tensor<1, 3> n  = sf.normal;
+          Tensor<1, 3>       e1 = sf.outline[1] - sf.outline[0];
+          e1 -= (e1 * n) * n;
+          e1 /= e1.norm();
+          const Tensor<1, 3> e2 = cross_product_3d(n, e1);
+          const auto         to_plane = [&](const Point<3> &x) {
+            const Tensor<1, 3> d = x - sf.centre;
+            return Point<2>(d * e1, d * e2);
+          };
+          Polygon own;
+          for (const Point<3> &x : sf.outline)
+            own.push_back(to_plane(x));
+          own = counter_clockwise(own);
+
+          BoundingBox<3> reach = sf.box;
+          reach.extend(search_distance);
+          bool in_reach = false;
+          for (const Face &mf : master)
+            {
+              // facing each other, and within reach along the normal
+              if (mf.normal * n > -0.2 ||
+                  reach.get_neighbor_type(mf.box) == NeighborType::not_neighbors)
+                continue;
+              const double distance = (mf.centre - sf.centre) * n;
+              if (std::abs(distance) > search_distance)
+                continue;
+              Polygon other;
+              for (const Point<3> &x : mf.outline)
+                other.push_back(to_plane(x));
+              const Polygon overlap =
+                clip_polygon(own, counter_clockwise(other));
+              if (overlap.size() < 3 ||
+                  std::abs(signed_area(overlap)) < 1e-12 * std::abs(signed_area(own)))
+                continue;
+              in_reach = true;
+              for (unsigned int t = 1; t + 1 < overlap.size(); ++t)
+                {
+                  const Point<2> a = overlap[0], b = overlap[t],
+                                 c = overlap[t + 1];
+                  const double area = std::abs(cross(a, b, c)) / 2;
+                  for (unsigned int k = 0; k < tri.size(); ++k)
+                    {
+                      const Point<2> r  = tri.point(k);
+                      const Point<2> x2 = a + (b - a) * r[0] + (c - a) * r[1];
+                      const Point<3> xs = sf.centre + x2[0] * e1 + x2[1] * e2;
+                      // along the slave normal onto the master face's plane
+                      const double   s = ((mf.centre - xs) * mf.normal) /
+                                       (n * mf.normal);
+                      const Point<3> xm = xs + s * n;
+                      const Point<3> us =
+                        unit_on_face(mapping, sf.cell, sf.face_no, xs);
+                      const Point<3> um =
+                        unit_on_face(mapping, mf.cell, mf.face_no, xm);
+                      const double w = 2. * area * tri.weight(k);
+                      op.covered_area += w;
+                      std::vector<double> phi(n_f);
+                      for (unsigned int b2 = 0; b2 < n_f; ++b2)
+                        phi[b2] = scalar.shape_value(sf.nodes[b2].second, us);
+                      for (unsigned int a2 = 0; a2 < n_f; ++a2)
+                        {
+                          double psi = 0.;
+                          for (unsigned int b2 = 0; b2 < n_f; ++b2)
+                            psi += A(a2, b2) * phi[b2];
+                          for (const auto &[l, sc] : mf.nodes)
+                            M[sf.nodes[a2].first][l] +=
+                              w * psi * scalar.shape_value(sc, um);
+                        }
+                    }
+                }
+            }
+          faces_in_reach += in_reach;
+        }
+      if (faces_in_reach == 0)
+        throw std::runtime_error(
+          "contact: no slave face (boundary id " + std::to_string(slave_id) +
+          ") has a master face (boundary id " + std::to_string(master_id) +
+          ") within the search distance of " + std::to_string(search_distance) +
+          " m");
+
+      op.tangents1.resize(n_s);
+      op.tangents2.resize(n_s);
+      const double inf = std::numeric_limits<double>::infinity();
+      for (unsigned int j = 0; j < n_s; ++j)
+        {
+          Tensor<1, 3> &nj = op.normals[j];
+          nj /= nj.norm();
+          Tensor<1, 3> t = (std::abs(nj[0]) < 0.9) ? Tensor<1, 3>({1., 0., 0.}) :
+                                                     Tensor<1, 3>({0., 1., 0.});
+          t -= (t * nj) * nj;
+          op.tangents1[j] = t / t.norm();
+          op.tangents2[j] = cross_product_3d(nj, op.tangents1[j]);
+          double row = 0.;
+          for (const auto &[l, m] : M[j])
+            {
+              op.M[j].emplace_back(l, m);
+              row += m;
+            }
+          // A node only partly over the master (at the edge of the reach)
+          // has no consistent weighted gap: it takes no part in contact.
+          if (row < (1. - 1e-6) * op.D[j])
+            {
+              op.gap0[j] = inf;
+              continue;
+            }
+          Tensor<1, 3> d = op.D[j] * op.slave_points[j];
+          for (const auto &[l, m] : op.M[j])
+            d -= m * op.master_points[l];
+          op.gap0[j] = -(d * nj);
+          if (op.gap0[j] < -search_distance * op.D[j])
+            throw std::runtime_error(
+              "contact: the bodies overlap by " +
+              std::to_string(-op.gap0[j] / op.D[j]) +
+              " m at slave node (" + std::to_string(op.slave_points[j][0]) +
+              ", " + std::to_string(op.slave_points[j][1]) + ", " +
+              std::to_string(op.slave_points[j][2]) +
+              "), more than the search distance allows");
+        }
+      return op;
+    }
+  } // namespace contact
+} // namespace squeal

@@ -1,0 +1,164 @@
+// Two elastic blocks stacked on the plane z = 0 with non-matching interface
+// meshes: the set-up of the patch test (verification B1) and the sliding
+// block (B5). Upper block (slave, boundary id 10 on z = 0) [0,1]^2 x [0,1],
+// lower block (master, id 11) [0,1]^2 x [-1,0]; top face id 1 (loaded),
+// bottom id 2 (u_z = 0), x = 0 id 3 (u_x = 0), y = 0 id 4 (u_y = 0).
+#ifndef squeal_tests_contact_two_blocks_h
+#define squeal_tests_contact_two_blocks_h
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <squeal/physics/structural_model.h>
+
+#include <memory>
+#include <set>
+
+struct TwoBlocks
+{
+  dealii::Triangulation<3>          tria;
+  dealii::FESystem<3>               fe;
+  dealii::MappingQ<3>               mapping{1};
+  dealii::DoFHandler<3>             dofs;
+  dealii::AffineConstraints<double> constraints;
+  dealii::SparsityPattern           pattern;
+  dealii::SparseMatrix<double>      K, K_free; // constrained, unconstrained
+  dealii::Vector<double>            f, f_free;
+
+  /** @p upper, @p lower: cells per side of the blocks' square faces. */
+  TwoBlocks(unsigned int degree, unsigned int upper, unsigned int lower,
+            double E_upper, double nu_upper, double E_lower, double nu_lower,
+            dealii::Tensor<1, 3> top_traction)
+    : fe(dealii::FE_Q<3>(degree), 3)
+    , dofs(tria)
+  {
+    using namespace dealii;
+    Triangulation<3> a, b;
+    GridGenerator::subdivided_hyper_rectangle(a, {upper, upper, 2},
+                                              Point<3>(0, 0, 0),
+                                              Point<3>(1, 1, 1));
+    GridGenerator::subdivided_hyper_rectangle(b, {lower, lower, 2},
+                                              Point<3>(0, 0, -1),
+                                              Point<3>(1, 1, 0));
+    // tolerance 0: the blocks share no vertex, even where they touch
+    GridGenerator::merge_triangulations(a, b, tria, 0.);
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        const bool up = cell->center()[2] > 0;
+        cell->set_material_id(up ? 0 : 1);
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const Point<3> c = cell->face(f)->center();
+              if (std::abs(c[2] - 1) < 1e-12)
+                cell->face(f)->set_boundary_id(1);
+              else if (std::abs(c[2] + 1) < 1e-12)
+                cell->face(f)->set_boundary_id(2);
+              else if (std::abs(c[2]) < 1e-12)
+                cell->face(f)->set_boundary_id(up ? 10 : 11);
+              else if (std::abs(c[0]) < 1e-12)
+                cell->face(f)->set_boundary_id(3);
+              else if (std::abs(c[1]) < 1e-12)
+                cell->face(f)->set_boundary_id(4);
+              else
+                cell->face(f)->set_boundary_id(5);
+            }
+      }
+    dofs.distribute_dofs(fe);
+    const Functions::ZeroFunction<3> zero(3);
+    VectorTools::interpolate_boundary_values(mapping, dofs, 2, zero, constraints,
+                                             ComponentMask({false, false, true}));
+    VectorTools::interpolate_boundary_values(mapping, dofs, 3, zero, constraints,
+                                             ComponentMask({true, false, false}));
+    VectorTools::interpolate_boundary_values(mapping, dofs, 4, zero, constraints,
+                                             ComponentMask({false, true, false}));
+    constraints.close();
+    DynamicSparsityPattern dsp(dofs.n_dofs());
+    DoFTools::make_sparsity_pattern(dofs, dsp);
+    pattern.copy_from(dsp);
+    K.reinit(pattern);
+    K_free.reinit(pattern);
+    f.reinit(dofs.n_dofs());
+    f_free.reinit(dofs.n_dofs());
+
+    const QGauss<3>     q(degree + 1);
+    const QGauss<2>     qf(degree + 1);
+    FEValues<3>         fv(mapping, fe, q,
+                   update_values | update_gradients | update_JxW_values);
+    FEFaceValues<3>     ffv(mapping, fe, qf, update_values | update_JxW_values);
+    const unsigned int  n = fe.n_dofs_per_cell();
+    FullMatrix<double>  ck(n, n), cm(n, n);
+    Vector<double>      cf(n);
+    std::vector<types::global_dof_index> ids(n);
+    for (const auto &cell : dofs.active_cell_iterators())
+      {
+        const bool   up = cell->material_id() == 0;
+        const double E = up ? E_upper : E_lower, nu = up ? nu_upper : nu_lower;
+        fv.reinit(cell);
+        ck = 0;
+        cm = 0;
+        cf = 0;
+        squeal::physics::add_cell_elasticity(
+          fv, E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu)), 1., ck,
+          cm);
+        for (const auto fn : cell->face_indices())
+          if (cell->face(fn)->at_boundary() &&
+              cell->face(fn)->boundary_id() == 1)
+            {
+              ffv.reinit(cell, fn);
+              for (unsigned int k = 0; k < qf.size(); ++k)
+                for (unsigned int i = 0; i < n; ++i)
+                  cf[i] += top_traction[fe.system_to_component_index(i).first] *
+                           ffv.shape_value(i, k) * ffv.JxW(k);
+            }
+        cell->get_dof_indices(ids);
+        constraints.distribute_local_to_global(ck, cf, ids, K, f);
+        K_free.add(ids, ck);
+        f_free.add(ids, cf);
+      }
+  }
+
+  /** Sum of the reaction forces (K_free u - f_free - f_contact) over the DoFs of
+   *  component @p c on faces with boundary id @p id of the block with
+   *  material @p material [N]. */
+  double
+  reaction(const dealii::Vector<double> &u,
+           const dealii::Vector<double> &f_contact,
+           dealii::types::boundary_id id, unsigned int c,
+           unsigned int material) const
+  {
+    dealii::Vector<double> r(u.size());
+    K_free.vmult(r, u);
+    r -= f_free;
+    r -= f_contact;
+    std::set<dealii::types::global_dof_index> seen;
+    std::vector<dealii::types::global_dof_index> face_dofs(fe.n_dofs_per_face());
+    double sum = 0;
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->material_id() == material)
+        for (const auto fn : cell->face_indices())
+          if (cell->face(fn)->at_boundary() &&
+              cell->face(fn)->boundary_id() == id)
+            {
+              cell->face(fn)->get_dof_indices(face_dofs);
+              for (unsigned int k = 0; k < face_dofs.size(); ++k)
+                if (fe.face_system_to_component_index(k).first == c &&
+                    seen.insert(face_dofs[k]).second)
+                  sum += r[face_dofs[k]];
+            }
+    return sum;
+  }
+};
+
+#endif
