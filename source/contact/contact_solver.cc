@@ -199,6 +199,7 @@ namespace squeal
                   friction += op.D[j] * mu * s.pressure[j] * tau[j];
                 }
               s.tangential_force = friction.norm();
+              s.nodal_pressure   = op.nodal_pressure(s.pressure);
               s.contact_force.reinit(n);
               for (unsigned int a = 0; a < A.size(); ++a)
                 {

@@ -16,6 +16,8 @@
 #include <squeal/contact/mortar.h>
 #include <squeal/contact/polygon.h>
 
+#include <Eigen/SparseCholesky>
+
 #include <cmath>
 #include <limits>
 #include <map>
@@ -124,6 +126,21 @@ namespace squeal
       return g;
     }
 
+    Vector<double>
+    MortarOperators::nodal_pressure(const Vector<double> &z) const
+    {
+      Eigen::VectorXd rhs(n_slave());
+      for (unsigned int j = 0; j < n_slave(); ++j)
+        rhs[j] = D[j] * (std::isfinite(z[j]) ? z[j] : 0.);
+      const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(
+        slave_mass);
+      const Eigen::VectorXd p = solver.solve(rhs);
+      Vector<double>        out(n_slave());
+      for (unsigned int j = 0; j < n_slave(); ++j)
+        out[j] = p[j];
+      return out;
+    }
+
     double
     MortarOperators::weighted_slip(const unsigned int    j,
                                    const Vector<double> &u,
@@ -164,6 +181,7 @@ namespace squeal
       op.M.assign(n_s, {});
       op.normals.assign(n_s, Tensor<1, 3>());
       std::vector<std::map<unsigned int, double>> M(n_s);
+      std::vector<Eigen::Triplet<double>>         mass;
 
       const FiniteElement<3> &fe     = dofs.get_fe();
       const FiniteElement<3> &scalar = fe.base_element(0);
@@ -200,6 +218,9 @@ namespace squeal
           for (unsigned int a = 0; a < n_f; ++a)
             {
               op.D[sf.nodes[a].first] += De[a];
+              for (unsigned int b = 0; b < n_f; ++b)
+                mass.emplace_back(sf.nodes[a].first, sf.nodes[b].first,
+                                  Me(a, b));
               for (unsigned int b = 0; b < n_f; ++b)
                 A(a, b) = De[a] * Mi(a, b);
             }
@@ -284,6 +305,8 @@ namespace squeal
           ") within the search distance of " + std::to_string(search_distance) +
           " m");
 
+      op.slave_mass.resize(n_s, n_s);
+      op.slave_mass.setFromTriplets(mass.begin(), mass.end());
       op.tangents1.resize(n_s);
       op.tangents2.resize(n_s);
       const double inf = std::numeric_limits<double>::infinity();

@@ -62,7 +62,9 @@ namespace squeal
       dealii::Vector<double> displacement; ///< n_dofs, m
       /// n_dofs: the contact forces on both bodies [N] (normal and friction)
       dealii::Vector<double> contact_force;
-      dealii::Vector<double> pressure;     ///< n_s, z_j [Pa]
+      dealii::Vector<double> pressure;     ///< n_s, multipliers z_j [Pa]
+      /// n_s, the pressure field at the nodes (MortarOperators::nodal_pressure)
+      dealii::Vector<double> nodal_pressure;
       std::vector<int>       status; ///< n_s: 0 separated, 1 closed, 2 slip
       dealii::Vector<double> gap;    ///< n_s, g_j / D_jj [m]
       double normal_force = 0.;      ///< sum_j D_jj z_j [N]

@@ -33,6 +33,8 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/vector.h>
 
+#include <Eigen/Sparse>
+
 #include <array>
 #include <utility>
 #include <vector>
@@ -59,6 +61,9 @@ namespace squeal
       /// row j: (master node l, M_jl [m^2]) for the nonzero entries
       std::vector<std::vector<std::pair<unsigned int, double>>> M;
       dealii::Vector<double> gap0; ///< n_s, weighted initial gap [m^3]
+      /// n_s x n_s: the standard mass matrix int phi_j phi_k of the slave
+      /// surface [m^2], for the nodal pressure
+      Eigen::SparseMatrix<double> slave_mass;
       double covered_area = 0.;    ///< slave area over the master [m^2]
       double slave_area   = 0.;    ///< m^2
 
@@ -71,6 +76,18 @@ namespace squeal
       /** g_j(u) = gap0_j + B_j u for all j [m^3]; @p u has n_dofs entries. */
       dealii::Vector<double>
       weighted_gaps(const dealii::Vector<double> &u) const;
+      /**
+       * The contact pressure as a continuous field of the standard slave
+       * shape functions, p_h = sum_k p_k phi_k, from the multipliers z (the
+       * coefficients of the dual functions): the L2 projection
+       * int p_h phi_j = int (sum_i z_i psi_i) phi_j = D_jj z_j, i.e.
+       * p = M_s^-1 D z (Popp et al. 2009). For quadratic faces the
+       * multipliers themselves overshoot a smooth peak (the dual vertex
+       * functions have negative lobes); the projection does not.
+       * @param z n_s multipliers [Pa] @return n_s nodal pressures [Pa]
+       */
+      dealii::Vector<double>
+      nodal_pressure(const dealii::Vector<double> &z) const;
       /** Weighted relative displacement of slave node j against the master
        * along @p direction: dir . (D_jj u_j - sum_l M_jl u_l) [m^3]. */
       double
