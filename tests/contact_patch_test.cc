@@ -101,5 +101,51 @@ main(int argc, char **argv)
         slipping += st == 2;
       check(name + ": every node slips", slipping, op.n_slave(), 0.);
     }
+  // Bad input: one clear error each.
+  const auto error_of = [](auto &&run) {
+    try
+      {
+        run();
+      }
+    catch (const std::exception &e)
+      {
+        return std::string(e.what());
+      }
+    return std::string();
+  };
+  {
+    TwoBlocks b(1, 3, 2, 200., 0.3, 100., 0.25, Tensor<1, 3>({0., 0., -p}));
+    const MortarOperators op =
+      build_mortar_operators(b.dofs, b.mapping, 10, 11, 0.1);
+    ContactSettings negative;
+    negative.friction_coefficient = -0.1;
+    check("mu < 0 is refused",
+          error_of([&] {
+            solve_static_contact(b.K, b.f, b.constraints, op, negative);
+          }).find("friction coefficient must not be negative") !=
+            std::string::npos,
+          1., 0.);
+    check("a slave surface with no master face in reach is refused",
+          error_of([&] {
+            build_mortar_operators(b.dofs, b.mapping, 10, 2, 0.1);
+          }).find("no slave face") != std::string::npos,
+          1., 0.);
+    TwoBlocks pulled(1, 3, 2, 200., 0.3, 100., 0.25, Tensor<1, 3>({0., 0., p}));
+    const MortarOperators op2 =
+      build_mortar_operators(pulled.dofs, pulled.mapping, 10, 11, 0.1);
+    check("a body pulled off (held by nothing) is reported, not solved",
+          error_of([&] {
+            solve_static_contact(pulled.K, pulled.f, pulled.constraints, op2,
+                                 ContactSettings());
+          }).find("is singular") != std::string::npos,
+          1., 0.);
+    TwoBlocks overlap(1, 3, 2, 200., 0.3, 100., 0.25,
+                      Tensor<1, 3>({0., 0., -p}), -0.05);
+    check("bodies overlapping beyond the search distance are refused",
+          error_of([&] {
+            build_mortar_operators(overlap.dofs, overlap.mapping, 10, 11, 0.01);
+          }).find("the bodies overlap by 0.05") != std::string::npos,
+          1., 0.);
+  }
   return test_tools::finish();
 }

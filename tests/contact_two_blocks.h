@@ -1,4 +1,5 @@
-// Two elastic blocks stacked on the plane z = 0 with non-matching interface
+// Two elastic blocks stacked on the plane z = 0 (the upper one shifted by
+// `gap`: negative overlaps) with non-matching interface
 // meshes: the set-up of the patch test (verification B1) and the sliding
 // block (B5). Upper block (slave, boundary id 10 on z = 0) [0,1]^2 x [0,1],
 // lower block (master, id 11) [0,1]^2 x [-1,0]; top face id 1 (loaded),
@@ -39,15 +40,15 @@ struct TwoBlocks
   /** @p upper, @p lower: cells per side of the blocks' square faces. */
   TwoBlocks(unsigned int degree, unsigned int upper, unsigned int lower,
             double E_upper, double nu_upper, double E_lower, double nu_lower,
-            dealii::Tensor<1, 3> top_traction)
+            dealii::Tensor<1, 3> top_traction, double gap = 0.)
     : fe(dealii::FE_Q<3>(degree), 3)
     , dofs(tria)
   {
     using namespace dealii;
     Triangulation<3> a, b;
     GridGenerator::subdivided_hyper_rectangle(a, {upper, upper, 2},
-                                              Point<3>(0, 0, 0),
-                                              Point<3>(1, 1, 1));
+                                              Point<3>(0, 0, gap),
+                                              Point<3>(1, 1, 1 + gap));
     GridGenerator::subdivided_hyper_rectangle(b, {lower, lower, 2},
                                               Point<3>(0, 0, -1),
                                               Point<3>(1, 1, 0));
@@ -55,17 +56,17 @@ struct TwoBlocks
     GridGenerator::merge_triangulations(a, b, tria, 0.);
     for (const auto &cell : tria.active_cell_iterators())
       {
-        const bool up = cell->center()[2] > 0;
+        const bool up = cell->center()[2] > gap;
         cell->set_material_id(up ? 0 : 1);
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary())
             {
               const Point<3> c = cell->face(f)->center();
-              if (std::abs(c[2] - 1) < 1e-12)
+              if (std::abs(c[2] - 1 - gap) < 1e-12)
                 cell->face(f)->set_boundary_id(1);
               else if (std::abs(c[2] + 1) < 1e-12)
                 cell->face(f)->set_boundary_id(2);
-              else if (std::abs(c[2]) < 1e-12)
+              else if (std::abs(c[2] - (up ? gap : 0.)) < 1e-12)
                 cell->face(f)->set_boundary_id(up ? 10 : 11);
               else if (std::abs(c[0]) < 1e-12)
                 cell->face(f)->set_boundary_id(3);

@@ -80,8 +80,11 @@ namespace squeal
       s.displacement.reinit(n);
       s.pressure.reinit(n_s);
       std::vector<char> active(n_s, 0);
+      // Closed at the start: nodes whose weighted gap is zero to rounding
+      // (relative to the node's length scale sqrt(D_jj)).
       for (unsigned int j = 0; j < n_s; ++j)
-        active[j] = std::isfinite(op.gap0[j]) && op.gap0[j] <= 0.;
+        active[j] = std::isfinite(op.gap0[j]) &&
+                    op.gap0[j] <= 1e-10 * op.D[j] * std::sqrt(op.D[j]);
 
       for (unsigned int it = 0; it < settings.max_iterations; ++it)
         {
@@ -143,6 +146,14 @@ namespace squeal
             {
               direct.initialize(S);
               direct.vmult(x, rhs);
+              // UMFPACK may return garbage for a singular matrix instead of
+              // failing: check the residual.
+              Vector<double> r(N);
+              S.vmult(r, x);
+              r -= rhs;
+              if (!std::isfinite(x.l2_norm()) ||
+                  r.l2_norm() > 1e-6 * std::max(rhs.l2_norm(), 1e-300))
+                throw std::runtime_error("singular");
             }
           catch (const std::exception &)
             {

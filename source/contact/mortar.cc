@@ -240,8 +240,12 @@ namespace squeal
             own.push_back(to_plane(x));
           own = counter_clockwise(own);
 
+          // Master faces up to one face size behind the slave face count
+          // too, so that overlapping bodies are reported, not ignored.
+          const double   size  = sf.box.side_length(0) + sf.box.side_length(1) +
+                              sf.box.side_length(2);
           BoundingBox<3> reach = sf.box;
-          reach.extend(search_distance);
+          reach.extend(std::max(search_distance, size));
           bool in_reach = false;
           for (const Face &mf : master)
             {
@@ -250,7 +254,8 @@ namespace squeal
                   reach.get_neighbor_type(mf.box) == NeighborType::not_neighbors)
                 continue;
               const double distance = (mf.centre - sf.centre) * n;
-              if (std::abs(distance) > search_distance)
+              if (distance > search_distance ||
+                  distance < -std::max(search_distance, size))
                 continue;
               Polygon other;
               for (const Point<3> &x : mf.outline)
