@@ -85,6 +85,7 @@ main(int argc, char **argv)
       const MortarOperators op =
         build_mortar_operators(b.dofs, b.mapping, 10, 11, 0.1);
       ContactSettings settings;
+      settings.friction             = FrictionModel::steady_sliding;
       settings.friction_coefficient = mu;
       settings.sliding_direction    = Tensor<1, 3>({1., 0., 0.});
       const ContactSolution s =

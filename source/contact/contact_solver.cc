@@ -14,6 +14,7 @@
 #include <squeal/contact/contact_solver.h>
 
 #include <cmath>
+#include <tuple>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -59,97 +60,165 @@ namespace squeal
         throw std::runtime_error(
           "contact: the friction coefficient must not be negative (got " +
           std::to_string(mu) + ")");
+      const FrictionModel model =
+        mu > 0. ? settings.friction : FrictionModel::frictionless;
+      Vector<double> u_prev(n);
+      if (settings.previous_displacement.size() == n)
+        u_prev = settings.previous_displacement;
 
-      // Sliding directions and the complementarity constants c_j = K_nn /
-      // D_jj^2 (pressure per weighted gap of the node's own stiffness).
-      std::vector<Tensor<1, 3>> tau(n_s);
-      std::vector<double>       c(n_s);
+      // Per node: the tangent frame, the sliding direction in it, the
+      // complementarity constant c_j = K_nn / D_jj^2 (pressure per weighted
+      // gap of the node's own stiffness).
+      std::vector<std::array<Tensor<1, 3>, 2>> frame(n_s);
+      std::vector<std::array<double, 2>>       slide(n_s);
+      std::vector<double>                      c(n_s);
       for (unsigned int j = 0; j < n_s; ++j)
         {
+          frame[j] = {{op.tangents1[j], op.tangents2[j]}};
           Tensor<1, 3> t = settings.sliding_direction;
           t -= (t * op.normals[j]) * op.normals[j];
-          tau[j] = t.norm() > 0. ? t / t.norm() : Tensor<1, 3>();
+          if (t.norm() > 0.)
+            t /= t.norm();
+          slide[j] = {{t * frame[j][0], t * frame[j][1]}};
           double k = 0.;
           for (unsigned int d = 0; d < 3; ++d)
             k += K.diag_element(op.slave_dofs[j][d]) *
                  std::abs(op.normals[j][d]);
           c[j] = k / (op.D[j] * op.D[j]);
         }
+      // T_jk: derivative of the weighted slip tau_k . (D u_j - sum M u_l)
+      const auto slip_row = [&](unsigned int j, unsigned int k) {
+        auto r = row(op, j, frame[j][k]);
+        for (auto &e : r)
+          e.second = -e.second;
+        return r;
+      };
+      const auto slip_of = [&](unsigned int j, const Vector<double> &u) {
+        std::array<double, 2> sl{{0., 0.}};
+        for (unsigned int k = 0; k < 2; ++k)
+          for (const auto &[d, v] : slip_row(j, k))
+            sl[k] += v * (u[d] - u_prev[d]);
+        return sl;
+      };
 
       ContactSolution s;
       s.displacement.reinit(n);
       s.pressure.reinit(n_s);
-      std::vector<char> active(n_s, 0);
+      s.tangential_traction.assign(n_s, {{0., 0.}});
+      // Sets: active (in contact), stick (Coulomb only), slip directions.
+      std::vector<char> active(n_s, 0), stick(n_s, 0);
+      std::vector<std::array<double, 2>> dir(slide);
       // Closed at the start: nodes whose weighted gap is zero to rounding
-      // (relative to the node's length scale sqrt(D_jj)).
+      // (relative to the node's length scale sqrt(D_jj)); they start stuck.
+      // A previous load step's sets, when given, are the better start.
+      const bool warm = settings.initial_status.size() == n_s;
       for (unsigned int j = 0; j < n_s; ++j)
-        active[j] = std::isfinite(op.gap0[j]) &&
-                    op.gap0[j] <= 1e-10 * op.D[j] * std::sqrt(op.D[j]);
+        {
+          active[j] = std::isfinite(op.gap0[j]) &&
+                      (warm ? settings.initial_status[j] != 0 :
+                              op.gap0[j] <= 1e-10 * op.D[j] * std::sqrt(op.D[j]));
+          stick[j] = model == FrictionModel::coulomb && active[j] &&
+                     (!warm || settings.initial_status[j] == 1);
+        }
 
       for (unsigned int it = 0; it < settings.max_iterations; ++it)
         {
-          std::vector<unsigned int> A;
+          // Unknowns: u, then z_n of each active node, then (2 per stuck
+          // node) its tangential traction.
+          std::vector<unsigned int> A, S;
+          std::vector<unsigned int> column(n_s, 0), t_column(n_s, 0);
           for (unsigned int j = 0; j < n_s; ++j)
             if (active[j])
-              A.push_back(j);
-          // The augmented system [K, -(B + mu G)_A^T; B_A, 0].
-          const unsigned int     N = n + A.size();
+              {
+                column[j] = n + A.size();
+                A.push_back(j);
+              }
+          for (unsigned int j : A)
+            if (stick[j])
+              {
+                t_column[j] = n + A.size() + 2 * S.size();
+                S.push_back(j);
+              }
+          const unsigned int N = n + A.size() + 2 * S.size();
+          // (row, column, value) of the contact blocks
+          std::vector<std::tuple<unsigned int, unsigned int, double>> entries;
+          Vector<double> rhs(N), x(N);
+          for (unsigned int i = 0; i < n; ++i)
+            rhs[i] = f[i];
+          const auto force_column = [&](unsigned int col,
+                                        const auto  &rows, double scale) {
+            for (const auto &[d, v] : rows)
+              if (!constraints.is_constrained(d))
+                entries.emplace_back(d, col, -scale * v);
+          };
+          // A constraint row on the unconstrained DoFs; the constrained
+          // ones (Dirichlet) move to the right-hand side. A row with no free
+          // DoF is met by the boundary conditions: its multiplier is void
+          // (an identity row, value 0).
+          std::vector<char> void_row(N, 0);
+          const auto constraint_row = [&](unsigned int r, const auto &rows,
+                                          double value) {
+            bool any = false;
+            for (const auto &[d, v] : rows)
+              if (constraints.is_constrained(d))
+                value -= v * constraints.get_inhomogeneity(d);
+              else
+                {
+                  entries.emplace_back(r, d, v);
+                  any = true;
+                }
+            rhs[r]      = any ? value : 0.;
+            void_row[r] = !any;
+          };
+          for (unsigned int j : A)
+            {
+              const auto b = row(op, j, op.normals[j]);
+              constraint_row(column[j], b, -op.gap0[j]);
+              // normal force B^T z
+              force_column(column[j], b, 1.);
+              if (model != FrictionModel::frictionless && !stick[j])
+                for (unsigned int k = 0; k < 2; ++k)
+                  force_column(column[j], slip_row(j, k), mu * dir[j][k]);
+            }
+          for (unsigned int j : S)
+            for (unsigned int k = 0; k < 2; ++k)
+              {
+                const auto r = slip_row(j, k);
+                double     prev = 0.;
+                for (const auto &[d, v] : r)
+                  prev += v * u_prev[d];
+                constraint_row(t_column[j] + k, r, prev);
+                force_column(t_column[j] + k, r, 1.);
+              }
           DynamicSparsityPattern dsp(N, N);
           for (unsigned int i = 0; i < n; ++i)
             for (auto e = K.begin(i); e != K.end(i); ++e)
               dsp.add(i, e->column());
-          std::vector<std::vector<std::pair<types::global_dof_index, double>>>
-            b_rows(A.size()), t_rows(A.size());
-          for (unsigned int a = 0; a < A.size(); ++a)
-            {
-              b_rows[a] = row(op, A[a], op.normals[A[a]]);
-              if (mu > 0.)
-                t_rows[a] = row(op, A[a], tau[A[a]]);
-              for (const auto &rows : {&b_rows[a], &t_rows[a]})
-                for (const auto &[d, v] : *rows)
-                  {
-                    dsp.add(n + a, d);
-                    dsp.add(d, n + a);
-                  }
-              dsp.add(n + a, n + a);
-            }
+          for (const auto &[r, col, v] : entries)
+            dsp.add(r, col);
+          for (unsigned int i = n; i < N; ++i)
+            dsp.add(i, i);
           SparsityPattern sp;
           sp.copy_from(dsp);
-          SparseMatrix<double> S(sp);
-          Vector<double>       rhs(N), x(N);
+          SparseMatrix<double> S_mat(sp);
           for (unsigned int i = 0; i < n; ++i)
-            {
-              for (auto e = K.begin(i); e != K.end(i); ++e)
-                S.set(i, e->column(), e->value());
-              rhs[i] = f[i];
-            }
-          for (unsigned int a = 0; a < A.size(); ++a)
-            {
-              // the gap row: B_j u = -g0_j
-              for (const auto &[d, v] : b_rows[a])
-                S.add(n + a, d, v);
-              rhs[n + a] = -op.gap0[A[a]];
-              // the contact force column, not on constrained rows (their
-              // values are fixed by their own rows)
-              for (const auto &[d, v] : b_rows[a])
-                if (!constraints.is_constrained(d))
-                  S.add(d, n + a, -v);
-              // friction: the slave is dragged along tau by mu z: the
-              // force is mu z (D tau on the slave, -M tau on the master),
-              // i.e. -mu (G row) with G as the gap-like row along tau
-              for (const auto &[d, v] : t_rows[a])
-                if (!constraints.is_constrained(d))
-                  S.add(d, n + a, mu * v);
-            }
+            for (auto e = K.begin(i); e != K.end(i); ++e)
+              S_mat.set(i, e->column(), e->value());
+          for (const auto &[r, col, v] : entries)
+            S_mat.add(r, col, v);
+          for (unsigned int i = n; i < N; ++i)
+            if (void_row[i])
+              S_mat.set(i, i, 1.);
+
           SparseDirectUMFPACK direct;
           try
             {
-              direct.initialize(S);
+              direct.initialize(S_mat);
               direct.vmult(x, rhs);
               // UMFPACK may return garbage for a singular matrix instead of
               // failing: check the residual.
               Vector<double> r(N);
-              S.vmult(r, x);
+              S_mat.vmult(r, x);
               r -= rhs;
               if (!std::isfinite(x.l2_norm()) ||
                   r.l2_norm() > 1e-6 * std::max(rhs.l2_norm(), 1e-300))
@@ -165,15 +234,28 @@ namespace squeal
             }
           for (unsigned int i = 0; i < n; ++i)
             s.displacement[i] = x[i];
-          s.pressure = 0.;
-          for (unsigned int a = 0; a < A.size(); ++a)
-            s.pressure[A[a]] = x[n + a];
           constraints.distribute(s.displacement);
+          s.pressure = 0.;
+          for (unsigned int j = 0; j < n_s; ++j)
+            {
+              s.tangential_traction[j] = {{0., 0.}};
+              if (!active[j])
+                continue;
+              s.pressure[j] = x[column[j]];
+              for (unsigned int k = 0; k < 2; ++k)
+                s.tangential_traction[j][k] =
+                  stick[j] ? x[t_column[j] + k] :
+                  model != FrictionModel::frictionless ?
+                             mu * s.pressure[j] * dir[j][k] :
+                             0.;
+            }
 
-          // The new active set.
+          // The new sets.
           const Vector<double> g = op.weighted_gaps(s.displacement);
           ContactIteration     info;
-          std::vector<char>    next(n_s, 0);
+          std::vector<char>    next(n_s, 0), next_stick(n_s, 0);
+          std::vector<std::array<double, 2>> next_dir(dir);
+          double               turn = 0.;
           for (unsigned int j = 0; j < n_s; ++j)
             {
               if (!std::isfinite(op.gap0[j]))
@@ -185,44 +267,89 @@ namespace squeal
                 info.tension = std::max(info.tension, -s.pressure[j]);
               else
                 info.penetration = std::max(info.penetration, -g[j] / op.D[j]);
+              if (model != FrictionModel::coulomb || !next[j])
+                continue;
+              // trial traction t - c s against the cone mu z
+              const std::array<double, 2> sl = slip_of(j, s.displacement);
+              const std::array<double, 2> trial{
+                {s.tangential_traction[j][0] - c[j] * sl[0],
+                 s.tangential_traction[j][1] - c[j] * sl[1]}};
+              const double norm  = std::hypot(trial[0], trial[1]);
+              const double bound = mu * std::max(s.pressure[j], 0.);
+              next_stick[j]      = norm <= bound || norm == 0.;
+              if (!next_stick[j])
+                {
+                  next_dir[j] = {{trial[0] / norm, trial[1] / norm}};
+                  const double dot = next_dir[j][0] * dir[j][0] +
+                                     next_dir[j][1] * dir[j][1];
+                  if (active[j] && !stick[j] && dot < 0.)
+                    {
+                      // The slip reversed: it passed through zero, so the
+                      // node sticks (this also breaks the two-cycle of a
+                      // node flipping between opposite directions).
+                      next_stick[j] = true;
+                      next_dir[j]   = dir[j];
+                    }
+                  else if (!stick[j])
+                    turn = std::max(turn,
+                                    std::hypot(next_dir[j][0] - dir[j][0],
+                                               next_dir[j][1] - dir[j][1]));
+                }
+              info.changed += next[j] == active[j] && next_stick[j] != stick[j];
+              info.stick += next_stick[j];
             }
           s.history.push_back(info);
           if (log)
             *log << "  active-set iteration " << std::setw(2) << it + 1
-                 << ": " << A.size() << " active, " << info.changed
-                 << " change set, largest penetration " << std::setprecision(3)
-                 << info.penetration << " m, largest tension " << info.tension
-                 << " Pa" << std::endl;
-          if (info.changed == 0)
+                 << ": " << A.size() << " active ("
+                 << (model == FrictionModel::coulomb ?
+                       std::to_string(S.size()) + " stick" :
+                       std::string("-"))
+                 << "), " << info.changed << " change set, largest penetration "
+                 << std::setprecision(3) << info.penetration
+                 << " m, largest tension " << info.tension << " Pa"
+                 << (model == FrictionModel::coulomb ?
+                       ", slip directions turned by " + std::to_string(turn) :
+                       std::string())
+                 << std::endl;
+          if (info.changed == 0 && turn < 1e-8)
             {
               s.gap.reinit(n_s);
               s.status.assign(n_s, 0);
+              s.slip.assign(n_s, {{0., 0.}});
               Tensor<1, 3> friction;
+              s.contact_force.reinit(n);
               for (unsigned int j = 0; j < n_s; ++j)
                 {
                   s.gap[j] = std::isfinite(op.gap0[j]) ? g[j] / op.D[j] :
                                                          op.gap0[j];
                   if (!active[j])
                     continue;
-                  s.status[j] = mu > 0. ? 2 : 1;
+                  const auto sl = slip_of(j, s.displacement);
+                  s.slip[j]     = {{sl[0] / op.D[j], sl[1] / op.D[j]}};
+                  s.status[j] =
+                    model == FrictionModel::frictionless ? 1 :
+                    model == FrictionModel::coulomb && stick[j] ? 1 :
+                                                                  2;
                   s.normal_force += op.D[j] * s.pressure[j];
                   s.contact_area += op.D[j];
-                  friction += op.D[j] * mu * s.pressure[j] * tau[j];
+                  for (unsigned int k = 0; k < 2; ++k)
+                    friction +=
+                      op.D[j] * s.tangential_traction[j][k] * frame[j][k];
+                  // forces on both bodies: normal and tangential
+                  for (const auto &[d, v] : row(op, j, op.normals[j]))
+                    s.contact_force[d] += s.pressure[j] * v;
+                  for (unsigned int k = 0; k < 2; ++k)
+                    for (const auto &[d, v] : slip_row(j, k))
+                      s.contact_force[d] += s.tangential_traction[j][k] * v;
                 }
               s.tangential_force = friction.norm();
               s.nodal_pressure   = op.nodal_pressure(s.pressure);
-              s.contact_force.reinit(n);
-              for (unsigned int a = 0; a < A.size(); ++a)
-                {
-                  const double z = s.pressure[A[a]];
-                  for (const auto &[d, v] : b_rows[a])
-                    s.contact_force[d] += z * v;
-                  for (const auto &[d, v] : t_rows[a])
-                    s.contact_force[d] -= mu * z * v;
-                }
               return s;
             }
           active = next;
+          stick  = next_stick;
+          dir    = next_dir;
         }
       std::ostringstream sizes;
       for (const auto &h : s.history)
@@ -232,6 +359,63 @@ namespace squeal
         std::to_string(settings.max_iterations) +
         " iterations (active-set sizes " + sizes.str() +
         "); nothing was written");
+    }
+
+    ContactSolution
+    solve_contact_load_steps(const SparseMatrix<double>      &K,
+                             const Vector<double>            &f_start,
+                             const Vector<double>            &f_end,
+                             const ContactSolution           &start,
+                             const AffineConstraints<double> &constraints,
+                             const MortarOperators           &op,
+                             ContactSettings                  settings,
+                             const unsigned int               n_steps,
+                             const unsigned int               max_cuts,
+                             std::ostream                    *log)
+    {
+      ContactSolution state = start;
+      const double    nominal = 1. / std::max(1u, n_steps);
+      double          done = 0., step = nominal;
+      unsigned int    cuts = 0;
+      std::vector<ContactIteration> history;
+      while (done < 1. - 1e-12)
+        {
+          const double   target = std::min(1., done + step);
+          Vector<double> f(f_start);
+          f.sadd(1. - target, target, f_end);
+          settings.previous_displacement = state.displacement;
+          settings.initial_status        = state.status;
+          try
+            {
+              ContactSolution next =
+                solve_static_contact(K, f, constraints, op, settings, log);
+              history.insert(history.end(), next.history.begin(),
+                             next.history.end());
+              state = std::move(next);
+              done  = target;
+              // after a cut, grow back towards the nominal step
+              step = std::min(nominal, 2. * step);
+              cuts = 0;
+              if (log)
+                *log << "  load factor " << done << " converged" << std::endl;
+            }
+          catch (const std::exception &e)
+            {
+              if (++cuts > max_cuts)
+                throw std::runtime_error(
+                  "contact: load stepping gave up at load factor " +
+                  std::to_string(done) + " after " +
+                  std::to_string(max_cuts) +
+                  " cuts (last step " + std::to_string(step) +
+                  "); last error: " + e.what());
+              step /= 2.;
+              if (log)
+                *log << "  step cut to " << step << " (" << e.what() << ")"
+                     << std::endl;
+            }
+        }
+      state.history = history;
+      return state;
     }
   } // namespace contact
 } // namespace squeal

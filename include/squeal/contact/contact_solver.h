@@ -13,11 +13,21 @@
  * [m^3] (mortar.h). For a linear structure each iteration solves
  *   K u - (B_A + mu G_A)^T z_A = f,   B_A u = -g0_A,   z_j = 0 off A,
  * with A = {j : z_j - c_j g_j > 0} of the previous iterate, until A no
- * longer changes (finitely many steps). With the steady-sliding option the
- * friction traction on every active slave node is mu z_j tau_j (tau_j the
- * master's sliding direction projected on the node's tangent plane), as in
- * the preload of a complex eigenvalue analysis: G_j u = tau_j . (D_jj u_j -
- * sum_l M_jl u_l). The augmented system is solved by UMFPACK.
+ * longer changes (finitely many steps).
+ *
+ * Friction (Coulomb, constant mu), on the tangential traction t_j of slave
+ * node j (2 components in its tangent frame, Pa) and its weighted slip
+ * increment s_j = T_j (u - u_prev), T_j = tau . (D_jj e_j - sum_l M_jl e_l):
+ * - `steady sliding`: every active node slips along the master's sliding
+ *   direction, t_j = mu z_j tau_j, as in the preload of a complex eigenvalue
+ *   analysis;
+ * - `coulomb`: stick (s_j = 0) where the trial traction t_j - c_j s_j lies
+ *   inside the cone mu z_j, slip (t_j = mu z_j d_j, d_j the trial
+ *   traction's direction) outside it: the return map of Alart & Curnier
+ *   (CMAME 92, 1991) in the set form of Hueber, Stadler & Wohlmuth (SIAM J.
+ *   Sci. Comput. 30, 2008), iterated with the stick/slip sets and the slip
+ *   directions until none changes.
+ * The augmented system is solved by UMFPACK.
  */
 
 #include <deal.II/base/tensor.h>
@@ -27,6 +37,7 @@
 
 #include <squeal/contact/mortar.h>
 
+#include <array>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -35,16 +46,31 @@ namespace squeal
 {
   namespace contact
   {
+    /** Friction law of the static contact solver. */
+    enum class FrictionModel
+    {
+      frictionless,
+      steady_sliding, ///< every contact node slips along sliding_direction
+      coulomb         ///< stick / slip from the incremental Coulomb law
+    };
+
     /** Settings of the static contact solver. */
     struct ContactSettings
     {
-      /// Coulomb coefficient of the steady-sliding friction [-]; 0:
-      /// frictionless
+      FrictionModel friction = FrictionModel::frictionless;
+      /// Coulomb coefficient [-]
       double friction_coefficient = 0.;
       /// sliding direction of the master surface against the slave
       /// (unit vector), projected on each slave node's tangent plane
       dealii::Tensor<1, 3> sliding_direction;
       unsigned int max_iterations = 50; ///< active-set iterations
+      /// `coulomb`: the displacement of the previous load step (slip
+      /// increments are measured from it), n_dofs; empty: zero
+      dealii::Vector<double> previous_displacement;
+      /// the status (0 separated, 1 stick, 2 slip) of each slave node at
+      /// the previous load step, the first guess of the sets; empty: the
+      /// nodes closed in the reference state, stuck
+      std::vector<int> initial_status;
     };
 
     /** One active-set iteration, for the convergence report. */
@@ -52,6 +78,7 @@ namespace squeal
     {
       unsigned int active = 0;      ///< nodes in contact
       unsigned int changed = 0;     ///< nodes that changed set
+      unsigned int stick = 0;       ///< nodes that stick
       double       penetration = 0.;///< largest -g_j / D_jj [m] off A
       double       tension = 0.;    ///< largest -z_j [Pa] on A
     };
@@ -67,8 +94,13 @@ namespace squeal
       dealii::Vector<double> nodal_pressure;
       std::vector<int>       status; ///< n_s: 0 separated, 1 closed, 2 slip
       dealii::Vector<double> gap;    ///< n_s, g_j / D_jj [m]
+      /// n_s x 2: tangential traction on the slave in (tangents1,
+      /// tangents2) [Pa] (coefficients of the dual functions)
+      std::vector<std::array<double, 2>> tangential_traction;
+      /// n_s x 2: weighted slip increment / D_jj [m] in the same frame
+      std::vector<std::array<double, 2>> slip;
       double normal_force = 0.;      ///< sum_j D_jj z_j [N]
-      double tangential_force = 0.;  ///< |sum_j D_jj mu z_j tau_j| [N]
+      double tangential_force = 0.;  ///< |sum_j D_jj t_j| [N]
       double contact_area = 0.;      ///< sum of D_jj over A [m^2]
       std::vector<ContactIteration> history;
     };
@@ -76,7 +108,9 @@ namespace squeal
     /**
      * Solves the static contact problem K u = f + contact forces.
      * @param K stiffness [N/m], n x n, assembled with @p constraints
-     * (Dirichlet constraints only: constrained rows carry their diagonal)
+     * (Dirichlet constraints only on the contact surfaces, no hanging
+     * nodes there: constrained rows carry their diagonal; a contact
+     * condition on constrained DoFs only is met by them)
      * @param f load [N], n
      * @param log if given, one line per iteration
      * @throws std::runtime_error naming the iteration count and the
@@ -90,6 +124,30 @@ namespace squeal
                          const MortarOperators                   &mortar,
                          const ContactSettings                   &settings,
                          std::ostream                            *log = nullptr);
+
+    /**
+     * Load stepping for path-dependent (Coulomb) contact: the load goes
+     * from @p f_start (already carried by @p start, the converged state at
+     * f_start) to @p f_end in @p n_steps equal increments; each step starts
+     * from the previous step's displacement and stick/slip sets. A step
+     * whose active set does not settle, or whose system is singular, is cut
+     * in half, at most @p max_cuts times in a row.
+     * @return the state at f_end; its history holds every step's iterations.
+     * @throws std::runtime_error naming the load factor reached, the step
+     * size and the last error when the cuts are exhausted; nothing is
+     * returned that would look like a converged result.
+     */
+    ContactSolution
+    solve_contact_load_steps(const dealii::SparseMatrix<double>      &K,
+                             const dealii::Vector<double>            &f_start,
+                             const dealii::Vector<double>            &f_end,
+                             const ContactSolution                   &start,
+                             const dealii::AffineConstraints<double> &constraints,
+                             const MortarOperators                   &mortar,
+                             ContactSettings                          settings,
+                             unsigned int                             n_steps,
+                             unsigned int                             max_cuts = 6,
+                             std::ostream *log = nullptr);
   } // namespace contact
 } // namespace squeal
 
