@@ -66,7 +66,8 @@ main(int argc, char **argv)
                             std::abs(s.nodal_pressure[j] - p) / p});
           n_active += s.status[j] != 0;
         }
-      test_tools::verbose() << name.str() << log.str();
+      test_tools::verbose() << name.str() << log.str() << "  largest relative error "
+                            << worst << std::endl;
       check(name.str() + "every slave node in contact", n_active, op.n_slave(),
             0.);
       check(name.str() + "multipliers and nodal pressures = p to 1e-8", worst,
