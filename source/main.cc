@@ -8,6 +8,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <squeal/cea/complex_eigenvalue_analysis.h>
+#include <squeal/contact/preload.h>
 #include <squeal/parameters/parameters.h>
 
 #include <iostream>
@@ -69,18 +70,32 @@ main(int argc, char **argv)
       // Catch inside the analysis' scope so that its TimerOutput is not
       // destroyed while an exception is in flight.
       std::string failure;
-      {
-        squeal::cea::ComplexEigenvalueAnalysis analysis(prm, handler,
-                                                        MPI_COMM_WORLD);
-        try
-          {
-            analysis.run();
-          }
-        catch (const std::exception &e)
-          {
-            failure = e.what();
-          }
-      }
+      if (prm.scene.analysis == "preload")
+        {
+          squeal::contact::PreloadAnalysis analysis(prm, handler,
+                                                    MPI_COMM_WORLD);
+          try
+            {
+              analysis.run();
+            }
+          catch (const std::exception &e)
+            {
+              failure = e.what();
+            }
+        }
+      else
+        {
+          squeal::cea::ComplexEigenvalueAnalysis analysis(prm, handler,
+                                                          MPI_COMM_WORLD);
+          try
+            {
+              analysis.run();
+            }
+          catch (const std::exception &e)
+            {
+              failure = e.what();
+            }
+        }
       if (!failure.empty())
         throw std::runtime_error(failure);
     }

@@ -50,6 +50,13 @@ namespace squeal
                         Patterns::Selection("tribobrake|disc"),
                         "tribobrake: disc, pad, support and springs with the "
                         "friction interface; disc: the clamped disc alone.");
+      prm.declare_entry("Analysis", analysis,
+                        Patterns::Selection("cea|preload"),
+                        "cea: complex eigenvalue analysis over the sweep; "
+                        "preload: the static frictional contact of the pad "
+                        "on the disc under Preload/Normal force (mortar "
+                        "contact), written as contact.csv and ParaView "
+                        "fields.");
       prm.leave_subsection();
     }
 
@@ -57,7 +64,50 @@ namespace squeal
     Scene::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Scene");
-      bodies = prm.get("Bodies");
+      bodies   = prm.get("Bodies");
+      analysis = prm.get("Analysis");
+      prm.leave_subsection();
+      if (analysis == "preload" && bodies != "tribobrake")
+        throw std::runtime_error(
+          "Scene/Analysis = preload needs Scene/Bodies = tribobrake");
+    }
+
+    void
+    Preload::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Preload");
+      prm.declare_entry("Normal force", str(normal_force),
+                        Patterns::Double(0.),
+                        "Force on the support's top pressing the pad on the "
+                        "disc [N], spread uniformly over the top face.");
+      prm.declare_entry("Friction", friction,
+                        Patterns::Selection(
+                          "steady sliding|coulomb|frictionless"),
+                        "steady sliding: every pad node in contact slips "
+                        "along the disc's sliding direction (Interface/"
+                        "Sliding direction), traction mu p, as in CEA "
+                        "practice; coulomb: stick/slip from the incremental "
+                        "Coulomb law, the load in Load steps increments; "
+                        "frictionless. mu is Interface/Friction coefficient.");
+      prm.declare_entry("Search distance", str(search_distance),
+                        Patterns::Double(1e-9),
+                        "How far along the pad face's normal the disc face is "
+                        "searched [m]; bodies overlapping by more are "
+                        "refused.");
+      prm.declare_entry("Load steps", std::to_string(load_steps),
+                        Patterns::Integer(1, 1000),
+                        "Increments of the normal force (coulomb).");
+      prm.leave_subsection();
+    }
+
+    void
+    Preload::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Preload");
+      normal_force    = prm.get_double("Normal force");
+      friction        = prm.get("Friction");
+      search_distance = prm.get_double("Search distance");
+      load_steps      = prm.get_integer("Load steps");
       prm.leave_subsection();
     }
 
@@ -655,6 +705,7 @@ namespace squeal
       interface.declare_parameters(prm);
       eigensolver.declare_parameters(prm);
       sweep.declare_parameters(prm);
+      preload.declare_parameters(prm);
       output.declare_parameters(prm);
     }
 
@@ -670,6 +721,7 @@ namespace squeal
       interface.parse_parameters(prm);
       eigensolver.parse_parameters(prm);
       sweep.parse_parameters(prm);
+      preload.parse_parameters(prm);
       output.parse_parameters(prm);
     }
 

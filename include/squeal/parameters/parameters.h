@@ -29,6 +29,9 @@ namespace squeal
     struct Scene
     {
       std::string bodies = "tribobrake";
+      /// `cea`: complex eigenvalue analysis (sweep); `preload`: the static
+      /// frictional contact of the pad on the disc under the normal load
+      std::string analysis = "cea";
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };
@@ -239,6 +242,21 @@ namespace squeal
       void parse_parameters(ParameterHandler &prm);
     };
 
+    /**
+     * The static preload (Scene/Analysis = preload): the normal force on the
+     * support's top presses the pad on the disc through mortar frictional
+     * contact (contact/contact_solver.h).
+     */
+    struct Preload
+    {
+      double       normal_force = 100.;          ///< N, on the support's top
+      std::string  friction = "steady sliding";  ///< or `coulomb`, `frictionless`
+      double       search_distance = 1e-3;       ///< m, contact search reach
+      unsigned int load_steps = 1;               ///< `coulomb`: increments
+      void declare_parameters(ParameterHandler &prm) const;
+      void parse_parameters(ParameterHandler &prm);
+    };
+
     /** All parameters of a run. */
     struct AllParameters
     {
@@ -251,6 +269,7 @@ namespace squeal
       Interface   interface;
       Eigensolver eigensolver;
       Sweep       sweep;
+      Preload     preload;
       Output      output;
 
       /** Declares every subsection with defaults, ranges and help. */

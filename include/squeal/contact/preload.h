@@ -1,0 +1,110 @@
+#ifndef squeal_contact_preload_h
+#define squeal_contact_preload_h
+
+/**
+ * @file
+ * The static preload of the TriboBrake (Scene/Analysis = preload): the
+ * normal force on the support's top presses the pad on the disc; the pad
+ * face (slave) and the disc face (master) are coupled by mortar frictional
+ * contact (mortar.h, contact_solver.h) with the friction of Preload/Friction
+ * and Interface/Friction coefficient along the disc's sliding direction. The
+ * structure is the CEA's (physics::StructuralModel: disc, pad, support,
+ * springs, clamped disc) at the nominal parameters of the file.
+ *
+ * The support is free along the radius in the thesis' model (its springs act
+ * along the sliding direction only): a sliding contact does not hold it
+ * there, so the radial displacement of the centre of the support's top is
+ * held (the loading arm of the rig).
+ *
+ * Serial: the contact solve is a direct solve of the whole augmented system.
+ */
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <squeal/contact/contact_solver.h>
+#include <squeal/contact/mortar.h>
+#include <squeal/physics/structural_model.h>
+
+#include <string>
+
+namespace squeal
+{
+  namespace contact
+  {
+    /** The preload analysis (tutorial shape: setup_system, assemble_load,
+     * solve, output_results, run). */
+    class PreloadAnalysis
+    {
+    public:
+      /** Keeps references to @p prm and @p handler (echoed into the output
+       * folder). */
+      PreloadAnalysis(const parameters::AllParameters &prm,
+                      const dealii::ParameterHandler  &handler,
+                      MPI_Comm                         comm);
+
+      /**
+       * Runs the preload; results in Output/Directory (written to
+       * DIRECTORY.partial, renamed at the end): contact.csv (per pad node:
+       * x, y, z [m], p_N, t_T1 (along the sliding direction), t_T2 [Pa], gap
+       * [m], status 0 separated / 1 stick / 2 slip), preload_summary.txt,
+       * contact.pvd + contact_surface.vtu (the pad face with its contact
+       * fields), displacement.vtu.
+       * @throws std::runtime_error under mpirun with more than one rank, on
+       * an existing output folder without Output/Overwrite, or when the
+       * contact solve fails (nothing is renamed then).
+       */
+      void
+      run();
+
+      /** The converged contact state (after run()). */
+      const ContactSolution &
+      solution() const
+      {
+        return state;
+      }
+      /** The mortar operators of the pad-disc interface (after run()). */
+      const MortarOperators &
+      interface() const
+      {
+        return mortar;
+      }
+      /** Force the support's springs take along the sliding direction [N]
+       * (after run()), from the spring matrix alone: in equilibrium it
+       * balances the friction force. */
+      double
+      spring_force() const
+      {
+        return spring_reaction;
+      }
+
+    private:
+      void setup_system();
+      void assemble_load();
+      void solve();
+      void output_results() const;
+
+      const parameters::AllParameters &prm;
+      const dealii::ParameterHandler  &handler;
+      MPI_Comm                         comm;
+      dealii::ConditionalOStream       pcout;
+      mutable dealii::TimerOutput      timer;
+      std::string                      work_dir;
+
+      physics::StructuralModel          model;
+      dealii::AffineConstraints<double> constraints; ///< model's + radial hold
+      dealii::SparsityPattern           pattern;
+      dealii::SparseMatrix<double>      stiffness; ///< K_s at the nominal point
+      dealii::Vector<double>            load;      ///< N
+      MortarOperators                   mortar;
+      ContactSolution                   state;
+      double                            spring_reaction = 0.;
+    };
+  } // namespace contact
+} // namespace squeal
+
+#endif

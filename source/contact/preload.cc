@@ -1,0 +1,361 @@
+// The static preload of the TriboBrake: the CEA's structure (mesh, FE space,
+// matrix parts) at the file's nominal parameters, the normal force on the
+// support's top, and the pad pressed on the disc through mortar frictional
+// contact. The PETSc stiffness of the structural model is copied into a
+// deal.II sparse matrix for the direct solve of the augmented contact system.
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_out_faces.h>
+
+#include <squeal/contact/preload.h>
+#include <squeal/geometry/tribobrake_mesh.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+namespace squeal
+{
+  namespace contact
+  {
+    using namespace dealii;
+    namespace fs = std::filesystem;
+
+    namespace
+    {
+      // DataOutFaces on the pad's contact face only.
+      class PadFaceOutput : public DataOutFaces<3>
+      {
+      public:
+        PadFaceOutput()
+          : DataOutFaces<3>(false)
+        {}
+        FaceDescriptor
+        first_face() override
+        {
+          for (const auto &cell : this->triangulation->active_cell_iterators())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() ==
+                    geometry::boundary::pad_contact)
+                return {cell, f};
+          return {};
+        }
+        FaceDescriptor
+        next_face(const FaceDescriptor &face) override
+        {
+          auto         cell  = face.first;
+          unsigned int start = face.second + 1;
+          for (; cell != this->triangulation->end(); ++cell, start = 0)
+            if (cell->is_active())
+              for (unsigned int f = start; f < cell->n_faces(); ++f)
+                if (cell->face(f)->at_boundary() &&
+                    cell->face(f)->boundary_id() ==
+                      geometry::boundary::pad_contact)
+                  return {cell, f};
+          return {};
+        }
+      };
+    } // namespace
+
+    PreloadAnalysis::PreloadAnalysis(const parameters::AllParameters &prm,
+                                     const ParameterHandler          &handler,
+                                     MPI_Comm                         comm)
+      : prm(prm)
+      , handler(handler)
+      , comm(comm)
+      , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+      , timer(pcout, TimerOutput::summary, TimerOutput::wall_times)
+      , model(prm, comm)
+    {}
+
+    void
+    PreloadAnalysis::setup_system()
+    {
+      TimerOutput::Scope t(timer, "setup and assembly");
+      if (Utilities::MPI::n_mpi_processes(comm) > 1)
+        throw std::runtime_error(
+          "the preload is serial for now (one direct solve of the contact "
+          "system); run it without mpirun");
+      const fs::path dir(prm.output.directory);
+      if (fs::exists(dir) && !prm.output.overwrite)
+        throw std::runtime_error(
+          "output directory '" + prm.output.directory +
+          "' exists; set Output/Overwrite = true or pass --overwrite to "
+          "replace it");
+      work_dir = prm.output.directory + ".partial";
+      fs::remove_all(work_dir);
+      fs::create_directories(work_dir);
+      {
+        std::ofstream out(fs::path(work_dir) / "parameters.prm");
+        handler.print_parameters(out, ParameterHandler::PRM);
+      }
+      model.setup_and_assemble(pcout);
+
+      // K_s at the nominal point, as a deal.II matrix.
+      const physics::MatrixParts parts = model.parts();
+      physics::PETScMatrix       K;
+      parts.combine(parts.coefficients(prm.nominal_point()).structural, K);
+      const unsigned int     n = model.n_dofs();
+      DynamicSparsityPattern dsp(n, n);
+      for (unsigned int i = 0; i < n; ++i)
+        for (auto e = K.begin(i); e != K.end(i); ++e)
+          dsp.add(i, e->column());
+      pattern.copy_from(dsp);
+      stiffness.reinit(pattern);
+      for (unsigned int i = 0; i < n; ++i)
+        for (auto e = K.begin(i); e != K.end(i); ++e)
+          stiffness.set(i, e->column(), e->value());
+
+      constraints.copy_from(model.constraints);
+      // Hold the radial displacement of the support top's centre node: a
+      // sliding contact does not hold the support along the radius.
+      const auto  &g = prm.geometry;
+      const Point<3> centre(g.pad_radius, 0., g.pad_size + g.support_length);
+      std::map<types::global_dof_index, Point<3>> support_points;
+      DoFTools::map_dofs_to_support_points(model.mapping, model.dof_handler,
+                                           support_points);
+      types::global_dof_index held = numbers::invalid_dof_index;
+      std::vector<bool>       is_x(n, false);
+      {
+        const ComponentMask x_only({true, false, false});
+        const IndexSet      xs = DoFTools::extract_dofs(model.dof_handler, x_only);
+        for (const auto d : xs)
+          is_x[d] = true;
+      }
+      double best = 1e300;
+      for (const auto &[d, x] : support_points)
+        if (is_x[d] && x.distance(centre) < best)
+          {
+            best = x.distance(centre);
+            held = d;
+          }
+      if (!constraints.is_constrained(held))
+        {
+          constraints.add_line(held);
+          const double diag = stiffness.diag_element(held);
+          for (auto e = stiffness.begin(held); e != stiffness.end(held); ++e)
+            if (e->column() != held)
+              {
+                stiffness.set(e->column(), held, 0.);
+                e->value() = 0.;
+              }
+          stiffness.set(held, held, diag);
+        }
+      constraints.close();
+      pcout << "Preload: " << n << " DoFs; radial displacement held at ("
+            << support_points[held][0] << ", " << support_points[held][1]
+            << ", " << support_points[held][2] << ") m" << std::endl;
+    }
+
+    void
+    PreloadAnalysis::assemble_load()
+    {
+      TimerOutput::Scope t(timer, "setup and assembly");
+      // Uniform pressure on the support's top: Normal force / top area.
+      const auto        &fe = model.fe;
+      const QGauss<2>     q(fe.degree + 1);
+      FEFaceValues<3>     fv(model.mapping, fe, q,
+                         update_values | update_JxW_values);
+      double              area = 0.;
+      for (const auto &cell : model.dof_handler.active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == geometry::boundary::support_top)
+            {
+              fv.reinit(cell, f);
+              for (unsigned int k = 0; k < q.size(); ++k)
+                area += fv.JxW(k);
+            }
+      if (!(area > 0.))
+        throw std::runtime_error("the support has no top face to load");
+      const double traction = -prm.preload.normal_force / area;
+      load.reinit(model.n_dofs());
+      Vector<double>                       cell_f(fe.n_dofs_per_cell());
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : model.dof_handler.active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == geometry::boundary::support_top)
+            {
+              fv.reinit(cell, f);
+              cell_f = 0.;
+              for (unsigned int k = 0; k < q.size(); ++k)
+                for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+                  if (fe.system_to_component_index(i).first == 2)
+                    cell_f[i] += traction * fv.shape_value(i, k) * fv.JxW(k);
+              cell->get_dof_indices(dofs);
+              constraints.distribute_local_to_global(cell_f, dofs, load);
+            }
+    }
+
+    void
+    PreloadAnalysis::solve()
+    {
+      TimerOutput::Scope t(timer, "contact solve");
+      mortar = build_mortar_operators(model.dof_handler, model.mapping,
+                                      geometry::boundary::pad_contact,
+                                      geometry::boundary::disc_contact,
+                                      prm.preload.search_distance);
+      pcout << "Interface: " << mortar.n_slave() << " pad nodes, pad face "
+            << mortar.slave_area * 1e6 << " mm^2, "
+            << 100. * mortar.covered_area / mortar.slave_area
+            << " % over the disc" << std::endl;
+      ContactSettings s;
+      s.friction = prm.preload.friction == "coulomb" ?
+                     FrictionModel::coulomb :
+                   prm.preload.friction == "steady sliding" ?
+                     FrictionModel::steady_sliding :
+                     FrictionModel::frictionless;
+      s.friction_coefficient = prm.interface.friction_coefficient;
+      s.sliding_direction    = prm.interface.sliding_tangent();
+      std::ostream *log = Utilities::MPI::this_mpi_process(comm) == 0 ?
+                            &std::cout :
+                            nullptr;
+      if (s.friction == FrictionModel::coulomb && prm.preload.load_steps > 1)
+        {
+          // first increment from the unloaded state, then the rest
+          Vector<double> first(load);
+          first *= 1. / prm.preload.load_steps;
+          const ContactSolution start =
+            solve_static_contact(stiffness, first, constraints, mortar, s, log);
+          state = solve_contact_load_steps(stiffness, first, load, start,
+                                           constraints, mortar, s,
+                                           prm.preload.load_steps - 1, 6, log);
+        }
+      else
+        state = solve_static_contact(stiffness, load, constraints, mortar, s,
+                                     log);
+
+      // What the springs carry along the sliding direction.
+      physics::PETScVector u(model.locally_owned_dofs, comm),
+        r(model.locally_owned_dofs, comm);
+      for (unsigned int i = 0; i < model.n_dofs(); ++i)
+        u[i] = state.displacement[i];
+      u.compress(VectorOperation::insert);
+      model.stiffness_springs.vmult(r, u);
+      const Tensor<1, 3> slide = prm.interface.sliding_tangent();
+      spring_reaction          = 0.;
+      std::vector<types::global_dof_index> dofs(model.fe.n_dofs_per_cell());
+      std::vector<bool>                    seen(model.n_dofs(), false);
+      for (const auto &cell : model.dof_handler.active_cell_iterators())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (!seen[dofs[i]])
+              {
+                seen[dofs[i]] = true;
+                spring_reaction +=
+                  r[dofs[i]] * slide[model.fe.system_to_component_index(i).first];
+              }
+        }
+      // The k_ref scaling: the parts hold springs at the reference value.
+      spring_reaction *=
+        prm.nominal_point().spring_stiffness / model.parts().reference.spring_stiffness;
+
+      double max_p = 0.;
+      for (unsigned int j = 0; j < mortar.n_slave(); ++j)
+        max_p = std::max(max_p, state.nodal_pressure[j]);
+      pcout << "Preload converged: normal force " << state.normal_force
+            << " N, friction force " << state.tangential_force
+            << " N (the support's springs hold back " << spring_reaction
+            << " N), contact area " << state.contact_area * 1e6 << " of "
+            << mortar.slave_area * 1e6 << " mm^2, mean pressure "
+            << state.normal_force / state.contact_area / 1e6
+            << " MPa, peak " << max_p / 1e6 << " MPa" << std::endl;
+    }
+
+    void
+    PreloadAnalysis::output_results() const
+    {
+      TimerOutput::Scope t(timer, "output");
+      const fs::path     dir(work_dir);
+      const unsigned int n_s = mortar.n_slave();
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      // contact.csv: traction components along the sliding direction and
+      // across it in the pad face
+      const Tensor<1, 3> slide = prm.interface.sliding_tangent();
+      {
+        std::ofstream out(dir / "contact.csv");
+        out << "x_m,y_m,z_m,p_N_Pa,t_T1_Pa,t_T2_Pa,gap_m,status\n"
+            << std::setprecision(10);
+        for (unsigned int j = 0; j < n_s; ++j)
+          {
+            const Tensor<1, 3> tt =
+              state.tangential_traction[j][0] * mortar.tangents1[j] +
+              state.tangential_traction[j][1] * mortar.tangents2[j];
+            const Tensor<1, 3> across = cross_product_3d(mortar.normals[j], slide);
+            const auto        &x = mortar.slave_points[j];
+            out << x[0] << ',' << x[1] << ',' << x[2] << ','
+                << state.nodal_pressure[j] << ',' << tt * slide << ','
+                << tt * across << ',' << state.gap[j] << ',' << state.status[j]
+                << '\n';
+          }
+      }
+      {
+        std::ofstream out(dir / "preload_summary.txt");
+        out << std::setprecision(8) << "normal_force_N " << state.normal_force
+            << "\nfriction_force_N " << state.tangential_force
+            << "\nspring_force_N " << spring_reaction << "\ncontact_area_m2 "
+            << state.contact_area << "\npad_face_area_m2 " << mortar.slave_area
+            << "\nactive_set_iterations " << state.history.size() << "\n";
+      }
+      // ParaView: the pad face with p_N, t_T1, status; the displacement.
+      Vector<double> fields(model.n_dofs());
+      for (unsigned int j = 0; j < n_s; ++j)
+        {
+          const Tensor<1, 3> tt =
+            state.tangential_traction[j][0] * mortar.tangents1[j] +
+            state.tangential_traction[j][1] * mortar.tangents2[j];
+          fields[mortar.slave_dofs[j][0]] = state.nodal_pressure[j];
+          fields[mortar.slave_dofs[j][1]] = tt * slide;
+          fields[mortar.slave_dofs[j][2]] = state.status[j];
+        }
+      {
+        PadFaceOutput out;
+        out.attach_dof_handler(model.dof_handler);
+        out.add_data_vector(fields,
+                            std::vector<std::string>{"contact_pressure_Pa",
+                                                     "friction_traction_Pa",
+                                                     "status"});
+        out.build_patches(model.mapping, model.fe.degree);
+        std::ofstream vtu(dir / "contact_surface.vtu");
+        out.write_vtu(vtu);
+        std::ofstream pvd(dir / "contact.pvd");
+        DataOutBase::write_pvd_record(
+          pvd, {std::make_pair(0., std::string("contact_surface.vtu"))});
+      }
+      {
+        DataOut<3> out;
+        out.attach_dof_handler(model.dof_handler);
+        out.add_data_vector(
+          state.displacement, std::vector<std::string>(3, "displacement_m"),
+          DataOut<3>::type_dof_data,
+          std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+            3, DataComponentInterpretation::component_is_part_of_vector));
+        out.build_patches(model.mapping, 1);
+        std::ofstream vtu(dir / "displacement.vtu");
+        out.write_vtu(vtu);
+      }
+    }
+
+    void
+    PreloadAnalysis::run()
+    {
+      setup_system();
+      assemble_load();
+      solve();
+      output_results();
+      if (fs::exists(prm.output.directory))
+        fs::remove_all(prm.output.directory);
+      fs::rename(work_dir, prm.output.directory);
+      pcout << "Results in " << prm.output.directory << std::endl;
+    }
+  } // namespace contact
+} // namespace squeal

@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""End-to-end check of the TriboBrake preload (Scene/Analysis = preload).
+
+usage: check_preload.py SQUEAL PRM WORKDIR
+
+Runs build/squeal on the coarse preload and checks:
+- the output files (contact.csv, preload_summary.txt, contact.pvd,
+  contact_surface.vtu, displacement.vtu, parameters.prm) and the pressure
+  map of scripts/plot_contact.py;
+- equilibrium: the normal contact force equals the 100 N load (1e-8), the
+  friction force is mu N (1e-10), and the support's springs, evaluated from
+  the spring matrix alone, hold back the friction force (1e-6);
+- the contact.csv rows: the pressures integrate to N within 10 % with the
+  trapezoid rule on the nodal grid (an independent quadrature of the
+  nodal pressure field), separated nodes carry no friction, and the pressure is highest at the leading edge (smallest y, where
+  the disc enters) with the trailing edge lifted (thesis sec. 3.4);
+- frictionless: no friction force, springs unloaded;
+- a second run into the same directory is refused.
+"""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+
+squeal, prm, work = sys.argv[1:4]
+prm = os.path.abspath(prm)
+here = os.path.dirname(os.path.abspath(__file__))
+plot = os.path.join(here, "..", "..", "scripts", "plot_contact.py")
+os.makedirs(work, exist_ok=True)
+os.chdir(work)
+
+
+def fail(msg):
+    print("FAILED:", msg)
+    sys.exit(1)
+
+
+def run(name, extra=""):
+    out = os.path.abspath(name)
+    shutil.rmtree(out, ignore_errors=True)
+    with open(name + ".prm", "w") as f:
+        f.write(f"include {prm}\n{extra}subsection Output\n  set Directory = {out}\nend\n")
+    r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
+    if r.returncode != 0:
+        fail(f"{name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
+    summary = {}
+    for line in open(os.path.join(out, "preload_summary.txt")):
+        k, v = line.split()
+        summary[k] = float(v)
+    with open(os.path.join(out, "contact.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    return out, summary, rows
+
+
+out, s, rows = run("sliding")
+for f in ["contact.csv", "preload_summary.txt", "contact.pvd",
+          "contact_surface.vtu", "displacement.vtu", "parameters.prm"]:
+    if not os.path.isfile(os.path.join(out, f)):
+        fail(f"missing {f}")
+r = subprocess.run(["/usr/bin/python3", plot, out], capture_output=True, text=True)
+if r.returncode != 0 or not os.path.isfile(os.path.join(out, "contact_pressure.png")):
+    fail(f"plot_contact.py failed: {r.stderr}")
+print("output files and pressure map: ok")
+
+mu, N = 0.5, 100.
+if abs(s["normal_force_N"] / N - 1) > 1e-8:
+    fail(f"normal force {s['normal_force_N']}")
+if abs(s["friction_force_N"] / (mu * N) - 1) > 1e-10:
+    fail(f"friction force {s['friction_force_N']}")
+if abs(s["spring_force_N"] / (mu * N) - 1) > 1e-6:
+    fail(f"spring force {s['spring_force_N']} against friction {mu * N}")
+print("equilibrium (normal force, friction = mu N, springs hold it back): ok")
+
+xs = sorted({round(float(r["x_m"]), 9) for r in rows})
+ys = sorted({round(float(r["y_m"]), 9) for r in rows})
+p = {(round(float(r["x_m"]), 9), round(float(r["y_m"]), 9)): float(r["p_N_Pa"])
+     for r in rows}
+total = 0.
+for i in range(len(xs) - 1):
+    for j in range(len(ys) - 1):
+        corners = [p[(xs[a], ys[b])] for a in (i, i + 1) for b in (j, j + 1)]
+        total += (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]) * sum(corners) / 4
+if abs(total / N - 1) > 0.10:
+    fail(f"trapezoid integral of the nodal pressures {total} N, not {N} N")
+for r in rows:
+    if int(r["status"]) == 0 and abs(float(r["t_T1_Pa"])) > 0:
+        fail("a separated node carries friction")
+slip = [r for r in rows if int(r["status"]) == 2]
+if not slip:
+    fail("no slipping node")
+lead = min(ys)
+peak = max(rows, key=lambda r: float(r["p_N_Pa"]))
+if abs(float(peak["y_m"]) - lead) > 1e-9:
+    fail(f"pressure peak at y = {peak['y_m']}, not at the leading edge {lead}")
+trailing = [r for r in rows if abs(float(r["y_m"]) - max(ys)) < 1e-9]
+if any(int(r["status"]) != 0 for r in trailing):
+    fail("the trailing edge stays in contact")
+print(f"pressures integrate to {total:.2f} N; peak at the leading edge, "
+      "trailing edge lifted: ok")
+
+_, s0, _ = run("frictionless", "subsection Preload\n  set Friction = frictionless\nend\n")
+if abs(s0["friction_force_N"]) > 1e-12 or abs(s0["spring_force_N"]) > 1e-6:
+    fail(f"frictionless: friction {s0['friction_force_N']}, springs {s0['spring_force_N']}")
+if abs(s0["normal_force_N"] / N - 1) > 1e-8:
+    fail(f"frictionless normal force {s0['normal_force_N']}")
+print("frictionless: no friction, springs unloaded: ok")
+
+again = subprocess.run([squeal, "sliding.prm"], capture_output=True, text=True)
+if again.returncode == 0 or "exists" not in again.stderr:
+    fail("a second run into the same directory was not refused")
+print("existing output refused: ok")
+print("all checks passed")
