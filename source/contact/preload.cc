@@ -281,20 +281,29 @@ namespace squeal
       // contact.csv: traction components along the sliding direction and
       // across it in the pad face
       const Tensor<1, 3> slide = prm.interface.sliding_tangent();
+      // The tangential traction as a nodal field too (the same L2
+      // projection as the pressure), along and across the sliding direction.
+      Vector<double> along(n_s), across_t(n_s);
+      for (unsigned int j = 0; j < n_s; ++j)
+        {
+          const Tensor<1, 3> tt =
+            state.tangential_traction[j][0] * mortar.tangents1[j] +
+            state.tangential_traction[j][1] * mortar.tangents2[j];
+          along[j]    = tt * slide;
+          across_t[j] = tt * cross_product_3d(mortar.normals[j], slide);
+        }
+      along    = mortar.nodal_pressure(along);
+      across_t = mortar.nodal_pressure(across_t);
       {
         std::ofstream out(dir / "contact.csv");
         out << "x_m,y_m,z_m,p_N_Pa,t_T1_Pa,t_T2_Pa,gap_m,status\n"
             << std::setprecision(10);
         for (unsigned int j = 0; j < n_s; ++j)
           {
-            const Tensor<1, 3> tt =
-              state.tangential_traction[j][0] * mortar.tangents1[j] +
-              state.tangential_traction[j][1] * mortar.tangents2[j];
-            const Tensor<1, 3> across = cross_product_3d(mortar.normals[j], slide);
-            const auto        &x = mortar.slave_points[j];
+            const auto &x = mortar.slave_points[j];
             out << x[0] << ',' << x[1] << ',' << x[2] << ','
-                << state.nodal_pressure[j] << ',' << tt * slide << ','
-                << tt * across << ',' << state.gap[j] << ',' << state.status[j]
+                << state.nodal_pressure[j] << ',' << along[j] << ','
+                << across_t[j] << ',' << state.gap[j] << ',' << state.status[j]
                 << '\n';
           }
       }
@@ -310,11 +319,8 @@ namespace squeal
       Vector<double> fields(model.n_dofs());
       for (unsigned int j = 0; j < n_s; ++j)
         {
-          const Tensor<1, 3> tt =
-            state.tangential_traction[j][0] * mortar.tangents1[j] +
-            state.tangential_traction[j][1] * mortar.tangents2[j];
           fields[mortar.slave_dofs[j][0]] = state.nodal_pressure[j];
-          fields[mortar.slave_dofs[j][1]] = tt * slide;
+          fields[mortar.slave_dofs[j][1]] = along[j];
           fields[mortar.slave_dofs[j][2]] = state.status[j];
         }
       {

@@ -50,8 +50,9 @@ namespace squeal
       /**
        * Runs the preload; results in Output/Directory (written to
        * DIRECTORY.partial, renamed at the end): contact.csv (per pad node:
-       * x, y, z [m], p_N, t_T1 (along the sliding direction), t_T2 [Pa], gap
-       * [m], status 0 separated / 1 stick / 2 slip), preload_summary.txt,
+       * x, y, z [m], p_N, t_T1 (along the sliding direction), t_T2 [Pa] as
+       * nodal fields (MortarOperators::nodal_pressure), gap [m], status 0
+       * separated / 1 stick / 2 slip), preload_summary.txt,
        * contact.pvd + contact_surface.vtu (the pad face with its contact
        * fields), displacement.vtu.
        * @throws std::runtime_error under mpirun with more than one rank, on
