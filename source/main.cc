@@ -60,17 +60,23 @@ main(int argc, char **argv)
       if (validate)
         {
           if (root)
-            std::cout << file << ": valid (scene " << prm.scene.bodies
-                      << ", " << prm.sweep.second.values.size() << " x "
-                      << prm.sweep.first.values.size()
-                      << " sweep points, output to "
-                      << prm.output.directory << ")" << std::endl;
+            {
+              std::cout << file << ": valid (scene " << prm.scene.bodies
+                        << ", " << prm.scene.analysis;
+              if (prm.scene.analysis != "preload")
+                std::cout << ", " << prm.sweep.second.values.size() << " x "
+                          << prm.sweep.first.values.size() << " sweep points";
+              else
+                std::cout << ", " << prm.preload.normal_force << " N";
+              std::cout << ", output to " << prm.output.directory << ")"
+                        << std::endl;
+            }
           return 0;
         }
       // Catch inside the analysis' scope so that its TimerOutput is not
       // destroyed while an exception is in flight.
       std::string failure;
-      if (prm.scene.analysis == "preload")
+      if (prm.scene.analysis == "preload")  // else cea, preloaded cea
         {
           squeal::contact::PreloadAnalysis analysis(prm, handler,
                                                     MPI_COMM_WORLD);

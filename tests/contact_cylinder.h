@@ -31,7 +31,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/numerics/vector_tools.h>
 
-#include <squeal/physics/structural_model.h>
+#include "contact_assembly.h"
 
 #include <cmath>
 #include <vector>
@@ -163,47 +163,16 @@ struct CylinderOnFlat
     f_normal.reinit(dofs.n_dofs());
     f_tangential.reinit(dofs.n_dofs());
 
-    const QGauss<3>    q(2);
-    const QGauss<2>    qf(2);
-    FEValues<3>        fv(mapping, fe, q,
-                   update_values | update_gradients | update_JxW_values);
-    FEFaceValues<3>    ffv(mapping, fe, qf, update_values | update_JxW_values);
-    const unsigned int n = fe.n_dofs_per_cell();
-    FullMatrix<double> ck(n, n), cm(n, n), zero_matrix(n, n);
-    Vector<double>     cn(n), ct(n);
-    std::vector<types::global_dof_index> ids(n);
     const double top = half ? w : 2. * w; // width of the loaded top
-    for (const auto &cell : dofs.active_cell_iterators())
-      {
-        const double Ec = cell->material_id() == 0 ? E : 1e6 * E;
-        fv.reinit(cell);
-        ck = 0;
-        cm = 0;
-        cn = 0;
-        ct = 0;
-        squeal::physics::add_cell_elasticity(
-          fv, Ec * nu / ((1 + nu) * (1 - 2 * nu)), Ec / (2 * (1 + nu)), 1., ck,
-          cm);
-        for (const auto fn : cell->face_indices())
-          if (cell->face(fn)->at_boundary() && cell->face(fn)->boundary_id() == 1)
-            {
-              ffv.reinit(cell, fn);
-              for (unsigned int k = 0; k < qf.size(); ++k)
-                for (unsigned int i = 0; i < n; ++i)
-                  {
-                    const unsigned int comp = fe.system_to_component_index(i).first;
-                    const double       v    = ffv.shape_value(i, k) * ffv.JxW(k);
-                    if (comp == 2)
-                      cn[i] -= (half ? 0.5 * P : P) / top * v;
-                    if (comp == 1)
-                      ct[i] += Q / top * v;
-                  }
-            }
-        cell->get_dof_indices(ids);
-        constraints.distribute_local_to_global(ck, cn, ids, K, f_normal);
-        constraints.distribute_local_to_global(zero_matrix, ct, ids, K,
-                                               f_tangential);
-      }
+    Tensor<1, 3> pressing, pulling;
+    pressing[2] = -(half ? 0.5 * P : P) / top;
+    pulling[1]  = Q / top;
+    assemble_elastic_system(
+      dofs, mapping, constraints,
+      [&](unsigned int m) {
+        return std::make_pair(m == 0 ? E : 1e6 * E, nu);
+      },
+      {{1, pressing, &f_normal}, {1, pulling, &f_tangential}}, K);
   }
 
   /** Size of the cell that contains y > 0 in the graded direction. */

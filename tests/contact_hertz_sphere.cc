@@ -30,6 +30,7 @@
 #include <sstream>
 
 #include "check.h"
+#include "contact_assembly.h"
 
 using namespace dealii;
 using namespace squeal::contact;
@@ -117,39 +118,13 @@ main(int argc, char **argv)
   sp.copy_from(dsp);
   SparseMatrix<double> K(sp);
   Vector<double>       f(dofs.n_dofs());
-  const QGauss<3>      q(degree + 1);
-  const QGauss<2>      qf(degree + 1);
-  FEValues<3>          fv(mapping, fe, q,
-                 update_values | update_gradients | update_JxW_values);
-  FEFaceValues<3>      ffv(mapping, fe, qf, update_values | update_JxW_values);
-  const unsigned int   n = fe.n_dofs_per_cell();
-  FullMatrix<double>   ck(n, n), cm(n, n);
-  Vector<double>       cf(n);
-  std::vector<types::global_dof_index> ids(n);
   // a quarter of F over the quarter top w x w
-  const double traction = -0.25 * F / (w * w);
-  for (const auto &cell : dofs.active_cell_iterators())
-    {
-      const double Ec = cell->material_id() == 0 ? E : 1e6 * E;
-      fv.reinit(cell);
-      ck = 0;
-      cm = 0;
-      cf = 0;
-      squeal::physics::add_cell_elasticity(
-        fv, Ec * nu / ((1 + nu) * (1 - 2 * nu)), Ec / (2 * (1 + nu)), 1., ck,
-        cm);
-      for (const auto fn : cell->face_indices())
-        if (cell->face(fn)->at_boundary() && cell->face(fn)->boundary_id() == 1)
-          {
-            ffv.reinit(cell, fn);
-            for (unsigned int k = 0; k < qf.size(); ++k)
-              for (unsigned int i = 0; i < n; ++i)
-                if (fe.system_to_component_index(i).first == 2)
-                  cf[i] += traction * ffv.shape_value(i, k) * ffv.JxW(k);
-          }
-      cell->get_dof_indices(ids);
-      constraints.distribute_local_to_global(ck, cf, ids, K, f);
-    }
+  Tensor<1, 3> pressing;
+  pressing[2] = -0.25 * F / (w * w);
+  assemble_elastic_system(
+    dofs, mapping, constraints,
+    [&](unsigned int m) { return std::make_pair(m == 0 ? E : 1e6 * E, nu); },
+    {{1, pressing, &f}}, K);
 
   const MortarOperators op = build_mortar_operators(dofs, mapping, 10, 11, 1.0);
   std::ostringstream    log;

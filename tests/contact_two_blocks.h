@@ -21,7 +21,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/numerics/vector_tools.h>
 
-#include <squeal/physics/structural_model.h>
+#include "contact_assembly.h"
 
 #include <memory>
 #include <set>
@@ -93,41 +93,13 @@ struct TwoBlocks
     f.reinit(dofs.n_dofs());
     f_free.reinit(dofs.n_dofs());
 
-    const QGauss<3>     q(degree + 1);
-    const QGauss<2>     qf(degree + 1);
-    FEValues<3>         fv(mapping, fe, q,
-                   update_values | update_gradients | update_JxW_values);
-    FEFaceValues<3>     ffv(mapping, fe, qf, update_values | update_JxW_values);
-    const unsigned int  n = fe.n_dofs_per_cell();
-    FullMatrix<double>  ck(n, n), cm(n, n);
-    Vector<double>      cf(n);
-    std::vector<types::global_dof_index> ids(n);
-    for (const auto &cell : dofs.active_cell_iterators())
-      {
-        const bool   up = cell->material_id() == 0;
-        const double E = up ? E_upper : E_lower, nu = up ? nu_upper : nu_lower;
-        fv.reinit(cell);
-        ck = 0;
-        cm = 0;
-        cf = 0;
-        squeal::physics::add_cell_elasticity(
-          fv, E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu)), 1., ck,
-          cm);
-        for (const auto fn : cell->face_indices())
-          if (cell->face(fn)->at_boundary() &&
-              cell->face(fn)->boundary_id() == 1)
-            {
-              ffv.reinit(cell, fn);
-              for (unsigned int k = 0; k < qf.size(); ++k)
-                for (unsigned int i = 0; i < n; ++i)
-                  cf[i] += top_traction[fe.system_to_component_index(i).first] *
-                           ffv.shape_value(i, k) * ffv.JxW(k);
-            }
-        cell->get_dof_indices(ids);
-        constraints.distribute_local_to_global(ck, cf, ids, K, f);
-        K_free.add(ids, ck);
-        f_free.add(ids, cf);
-      }
+    assemble_elastic_system(
+      dofs, mapping, constraints,
+      [&](unsigned int m) {
+        return m == 0 ? std::make_pair(E_upper, nu_upper) :
+                        std::make_pair(E_lower, nu_lower);
+      },
+      {{1, top_traction, &f}}, K, &K_free, &f_free);
   }
 
   /** Sum of the reaction forces (K_free u - f_free - f_contact) over the DoFs of

@@ -14,6 +14,7 @@
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <squeal/output/output_directory.h>
 #include <squeal/tribology/tribology_analysis.h>
 
 #include <opencv2/imgcodecs.hpp>
@@ -581,15 +582,9 @@ namespace squeal
     void
     TribologyAnalysis::setup()
     {
-      const fs::path dir(prm.output.directory);
-      if (fs::exists(dir) && !prm.output.overwrite)
-        throw std::runtime_error(
-          "output directory '" + prm.output.directory +
-          "' exists; set Output/Overwrite = true or pass --overwrite to "
-          "replace it");
-      work_dir = prm.output.directory + ".partial";
-      fs::remove_all(work_dir);
-      fs::create_directories(fs::path(work_dir) / "images");
+      work_dir =
+        output::partial_directory(prm.output.directory, prm.output.overwrite);
+      output::fresh_directory(work_dir, "images");
       std::ofstream out(fs::path(work_dir) / "parameters.prm");
       handler.print_parameters(out, ParameterHandler::PRM);
 
@@ -1300,9 +1295,7 @@ namespace squeal
               "the plots failed (" + cmd +
               "); set Output/Plots = false to run without matplotlib");
         }
-      if (fs::exists(prm.output.directory))
-        fs::remove_all(prm.output.directory);
-      fs::rename(work_dir, prm.output.directory);
+      output::publish_directory(work_dir, prm.output.directory);
       std::cout << "Results in " << prm.output.directory << std::endl;
     }
 

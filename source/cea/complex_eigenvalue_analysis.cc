@@ -10,6 +10,8 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <squeal/cea/complex_eigenvalue_analysis.h>
+#include <squeal/contact/preload.h>
+#include <squeal/output/output_directory.h>
 #include <squeal/geometry/tribobrake_mesh.h>
 
 #include <algorithm>
@@ -46,21 +48,41 @@ namespace squeal
       TimerOutput::Scope t(timer, "setup and assembly");
       // Refuse to replace earlier results; write into a temporary directory
       // that output_results() renames at the end.
-      const fs::path dir(prm.output.directory);
-      if (fs::exists(dir) && !prm.output.overwrite)
-        throw std::runtime_error(
-          "output directory '" + prm.output.directory +
-          "' exists; set Output/Overwrite = true or pass --overwrite to "
-          "replace it");
-      work_dir = prm.output.directory + ".partial";
+      work_dir =
+        output::partial_directory(prm.output.directory, prm.output.overwrite);
       if (Utilities::MPI::this_mpi_process(comm) == 0)
         {
-          fs::remove_all(work_dir);
-          fs::create_directories(fs::path(work_dir) / "modes");
+          output::fresh_directory(work_dir, "modes");
           std::ofstream out(fs::path(work_dir) / "parameters.prm");
           handler.print_parameters(out, ParameterHandler::PRM);
         }
       MPI_Barrier(comm);
+      if (prm.scene.analysis == "preloaded cea")
+        {
+          // The preload at the file's nominal parameters, written into
+          // preload/; the interface of the CEA then lives where the pad
+          // stayed in contact (nearest pad node's status).
+          parameters::AllParameters pre = prm;
+          pre.output.directory          = work_dir + "/preload";
+          pre.output.overwrite          = true;
+          contact::PreloadAnalysis preload(pre, handler, comm);
+          preload.run();
+          const contact::MortarOperators &op = preload.interface();
+          std::vector<std::pair<dealii::Point<3>, double>> nodes;
+          for (unsigned int j = 0; j < op.n_slave(); ++j)
+            nodes.emplace_back(op.slave_points[j],
+                               preload.solution().status[j] != 0 ? 1. : 0.);
+          model.interface_mask = [nodes](const dealii::Point<3> &x) {
+            double best = 1e300, value = 0.;
+            for (const auto &[p, v] : nodes)
+              if (p.distance(x) < best)
+                {
+                  best  = p.distance(x);
+                  value = v;
+                }
+            return value;
+          };
+        }
       model.setup_and_assemble(pcout);
     }
 
@@ -697,11 +719,7 @@ namespace squeal
         }
       MPI_Barrier(comm);
       if (root)
-        {
-          if (fs::exists(prm.output.directory))
-            fs::remove_all(prm.output.directory);
-          fs::rename(work_dir, prm.output.directory);
-        }
+        output::publish_directory(work_dir, prm.output.directory);
       MPI_Barrier(comm);
       pcout << "Results written to " << prm.output.directory << "/" << std::endl;
     }

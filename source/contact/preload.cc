@@ -13,6 +13,7 @@
 
 #include <squeal/contact/preload.h>
 #include <squeal/geometry/tribobrake_mesh.h>
+#include <squeal/output/output_directory.h>
 
 #include <cmath>
 #include <filesystem>
@@ -82,15 +83,9 @@ namespace squeal
         throw std::runtime_error(
           "the preload is serial for now (one direct solve of the contact "
           "system); run it without mpirun");
-      const fs::path dir(prm.output.directory);
-      if (fs::exists(dir) && !prm.output.overwrite)
-        throw std::runtime_error(
-          "output directory '" + prm.output.directory +
-          "' exists; set Output/Overwrite = true or pass --overwrite to "
-          "replace it");
-      work_dir = prm.output.directory + ".partial";
-      fs::remove_all(work_dir);
-      fs::create_directories(work_dir);
+      work_dir =
+        output::partial_directory(prm.output.directory, prm.output.overwrite);
+      output::fresh_directory(work_dir);
       {
         std::ofstream out(fs::path(work_dir) / "parameters.prm");
         handler.print_parameters(out, ParameterHandler::PRM);
@@ -358,9 +353,7 @@ namespace squeal
       assemble_load();
       solve();
       output_results();
-      if (fs::exists(prm.output.directory))
-        fs::remove_all(prm.output.directory);
-      fs::rename(work_dir, prm.output.directory);
+      output::publish_directory(work_dir, prm.output.directory);
       pcout << "Results in " << prm.output.directory << std::endl;
     }
   } // namespace contact

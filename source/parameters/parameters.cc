@@ -51,12 +51,15 @@ namespace squeal
                         "tribobrake: disc, pad, support and springs with the "
                         "friction interface; disc: the clamped disc alone.");
       prm.declare_entry("Analysis", analysis,
-                        Patterns::Selection("cea|preload"),
+                        Patterns::Selection("cea|preload|preloaded cea"),
                         "cea: complex eigenvalue analysis over the sweep; "
                         "preload: the static frictional contact of the pad "
                         "on the disc under Preload/Normal force (mortar "
                         "contact), written as contact.csv and ParaView "
-                        "fields.");
+                        "fields; preloaded cea: the preload at the file's "
+                        "nominal parameters, then the CEA with the interface "
+                        "stiffness and friction coupling only where the pad "
+                        "stayed in contact (serial).");
       prm.leave_subsection();
     }
 
@@ -67,9 +70,9 @@ namespace squeal
       bodies   = prm.get("Bodies");
       analysis = prm.get("Analysis");
       prm.leave_subsection();
-      if (analysis == "preload" && bodies != "tribobrake")
-        throw std::runtime_error(
-          "Scene/Analysis = preload needs Scene/Bodies = tribobrake");
+      if (analysis != "cea" && bodies != "tribobrake")
+        throw std::runtime_error("Scene/Analysis = " + analysis +
+                                 " needs Scene/Bodies = tribobrake");
     }
 
     void

@@ -71,6 +71,22 @@ namespace squeal
           dof_handler, mapping, prm.interface.quadrature,
           prm.interface.quadrature == "nodal" ? prm.mesh.fe_degree + 1 :
                                                 prm.mesh.fe_degree + 2);
+      if (interface_mask)
+        {
+          std::vector<contact::CouplingPoint> kept;
+          for (contact::CouplingPoint p : interface_points)
+            {
+              p.weight *= interface_mask(
+                mapping.transform_unit_to_real_cell(p.pad_cell, p.pad_unit));
+              if (p.weight != 0.)
+                kept.push_back(p);
+            }
+          pcout << "Interface: " << kept.size() << " of "
+                << interface_points.size()
+                << " quadrature points in contact after the preload"
+                << std::endl;
+          interface_points.swap(kept);
+        }
 
       DynamicSparsityPattern dsp(locally_relevant_dofs);
       DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);

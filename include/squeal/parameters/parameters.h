@@ -30,7 +30,8 @@ namespace squeal
     {
       std::string bodies = "tribobrake";
       /// `cea`: complex eigenvalue analysis (sweep); `preload`: the static
-      /// frictional contact of the pad on the disc under the normal load
+      /// frictional contact of the pad on the disc under the normal load;
+      /// `preloaded cea`: the preload, then the CEA on its contact area
       std::string analysis = "cea";
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);

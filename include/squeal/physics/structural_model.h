@@ -26,6 +26,7 @@
 #include <squeal/parameters/parameters.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 
 namespace squeal
@@ -158,6 +159,17 @@ namespace squeal
 
       const parameters::AllParameters &prm;
       MPI_Comm                         comm;
+
+      /**
+       * Optional weight of the linear friction interface at a point of the
+       * pad face (m): each interface quadrature point's weight is
+       * multiplied by it before K_n and K_t are assembled. Set it before
+       * setup_and_assemble(); unset means 1 everywhere. A CEA about a preload
+       * sets it to 1 where the preload's pad nodes are in contact and 0
+       * where they separated, so that the interface stiffness and the
+       * friction coupling live on the active set only.
+       */
+      std::function<double(const dealii::Point<3> &)> interface_mask;
 
       dealii::parallel::shared::Triangulation<3> triangulation;
       const dealii::FESystem<3>                  fe;
