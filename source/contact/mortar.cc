@@ -12,13 +12,16 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/numerics/rtree.h>
 
 #include <squeal/contact/mortar.h>
 #include <squeal/contact/polygon.h>
 
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -191,6 +194,14 @@ namespace squeal
                            update_normal_vectors);
       const QGaussSimplex<2> tri(std::min(std::max(n_points, 1u), 4u));
 
+      // The master faces' bounding boxes in an R-tree (deal.II's
+      // boost::geometry wrapper): each slave face asks only the boxes its
+      // reach intersects.
+      std::vector<std::pair<BoundingBox<3>, unsigned int>> boxes;
+      for (unsigned int m = 0; m < master.size(); ++m)
+        boxes.emplace_back(master[m].box, m);
+      const auto tree = pack_rtree(boxes);
+
       unsigned int faces_in_reach = 0;
       for (const Face &sf : slave)
         {
@@ -247,11 +258,17 @@ namespace squeal
           BoundingBox<3> reach = sf.box;
           reach.extend(std::max(search_distance, size));
           bool in_reach = false;
-          for (const Face &mf : master)
+          std::vector<std::pair<BoundingBox<3>, unsigned int>> candidates;
+          tree.query(boost::geometry::index::intersects(reach),
+                     std::back_inserter(candidates));
+          // in the master faces' order, so that M is summed in a fixed order
+          std::sort(candidates.begin(), candidates.end(),
+                    [](const auto &a, const auto &b) { return a.second < b.second; });
+          for (const auto &candidate : candidates)
             {
+              const Face &mf = master[candidate.second];
               // facing each other, and within reach along the normal
-              if (mf.normal * n > -0.2 ||
-                  reach.get_neighbor_type(mf.box) == NeighborType::not_neighbors)
+              if (mf.normal * n > -0.2)
                 continue;
               const double distance = (mf.centre - sf.centre) * n;
               if (distance > search_distance ||

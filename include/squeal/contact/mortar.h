@@ -14,7 +14,8 @@
  *   D_jj = int_{Gamma_s} psi_j phi_j dA = int phi_j dA           (diagonal),
  *   M_jl = int_{Gamma_s} psi_j (phi_l^m o P) dA                  (mixed),
  * the second by segment-based integration: each slave face is clipped
- * against the projections of the master faces onto its plane and the
+ * against the projections of the master faces (found through an R-tree of
+ * their bounding boxes) onto its plane and the
  * overlap is triangulated and integrated exactly (for planar faces), which
  * makes the constant-pressure patch test pass to rounding.
  *
