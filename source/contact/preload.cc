@@ -212,20 +212,30 @@ namespace squeal
       std::ostream *log = Utilities::MPI::this_mpi_process(comm) == 0 ?
                             &std::cout :
                             nullptr;
-      if (s.friction == FrictionModel::coulomb && prm.preload.load_steps > 1)
+      // The normal force in Load steps increments; each step starts from the
+      // previous one (and, with Coulomb friction, measures slip from it),
+      // cutting its increment when the active set does not settle. Every
+      // step's contact state is written.
+      const unsigned int n_steps = prm.preload.load_steps;
+      Vector<double>     previous(load.size());
+      state = ContactSolution();
+      for (unsigned int k = 1; k <= n_steps; ++k)
         {
-          // first increment from the unloaded state, then the rest
-          Vector<double> first(load);
-          first *= 1. / prm.preload.load_steps;
-          const ContactSolution start =
-            solve_static_contact(stiffness, first, constraints, mortar, s, log);
-          state = solve_contact_load_steps(stiffness, first, load, start,
-                                           constraints, mortar, s,
-                                           prm.preload.load_steps - 1, 6, log);
+          Vector<double> f(load);
+          f *= double(k) / n_steps;
+          if (log && n_steps > 1)
+            *log << "Load step " << k << " of " << n_steps << ": "
+                 << prm.preload.normal_force * k / n_steps << " N"
+                 << std::endl;
+          state = solve_contact_load_steps(stiffness, previous, f, state,
+                                           constraints, mortar, s, 1, 6, log);
+          previous = f;
+          const std::string step = Utilities::int_to_string(k, 3);
+          write_contact("contact_step_" + step + ".csv",
+                        "contact_surface_" + step + ".vtu");
+          steps.emplace_back(double(k) / n_steps,
+                             "contact_surface_" + step + ".vtu");
         }
-      else
-        state = solve_static_contact(stiffness, load, constraints, mortar, s,
-                                     log);
 
       // What the springs carry along the sliding direction.
       physics::PETScVector u(model.locally_owned_dofs, comm),
@@ -266,19 +276,17 @@ namespace squeal
     }
 
     void
-    PreloadAnalysis::output_results() const
+    PreloadAnalysis::write_contact(const std::string &csv_name,
+                                   const std::string &vtu_name) const
     {
-      TimerOutput::Scope t(timer, "output");
-      const fs::path     dir(work_dir);
-      const unsigned int n_s = mortar.n_slave();
       if (Utilities::MPI::this_mpi_process(comm) != 0)
         return;
-      // contact.csv: traction components along the sliding direction and
-      // across it in the pad face
-      const Tensor<1, 3> slide = prm.interface.sliding_tangent();
+      const fs::path     dir(work_dir);
+      const unsigned int n_s = mortar.n_slave();
       // The tangential traction as a nodal field too (the same L2
       // projection as the pressure), along and across the sliding direction.
-      Vector<double> along(n_s), across_t(n_s);
+      const Tensor<1, 3> slide = prm.interface.sliding_tangent();
+      Vector<double>     along(n_s), across_t(n_s);
       for (unsigned int j = 0; j < n_s; ++j)
         {
           const Tensor<1, 3> tt =
@@ -290,7 +298,7 @@ namespace squeal
       along    = mortar.nodal_pressure(along);
       across_t = mortar.nodal_pressure(across_t);
       {
-        std::ofstream out(dir / "contact.csv");
+        std::ofstream out(dir / csv_name);
         out << "x_m,y_m,z_m,p_N_Pa,t_T1_Pa,t_T2_Pa,gap_m,status\n"
             << std::setprecision(10);
         for (unsigned int j = 0; j < n_s; ++j)
@@ -302,15 +310,7 @@ namespace squeal
                 << '\n';
           }
       }
-      {
-        std::ofstream out(dir / "preload_summary.txt");
-        out << std::setprecision(8) << "normal_force_N " << state.normal_force
-            << "\nfriction_force_N " << state.tangential_force
-            << "\nspring_force_N " << spring_reaction << "\ncontact_area_m2 "
-            << state.contact_area << "\npad_face_area_m2 " << mortar.slave_area
-            << "\nactive_set_iterations " << state.history.size() << "\n";
-      }
-      // ParaView: the pad face with p_N, t_T1, status; the displacement.
+      // ParaView: the pad face with p_N, t_T1, status.
       Vector<double> fields(model.n_dofs());
       for (unsigned int j = 0; j < n_s; ++j)
         {
@@ -318,32 +318,50 @@ namespace squeal
           fields[mortar.slave_dofs[j][1]] = along[j];
           fields[mortar.slave_dofs[j][2]] = state.status[j];
         }
+      PadFaceOutput out;
+      out.attach_dof_handler(model.dof_handler);
+      out.add_data_vector(fields,
+                          std::vector<std::string>{"contact_pressure_Pa",
+                                                   "friction_traction_Pa",
+                                                   "status"});
+      out.build_patches(model.mapping, model.fe.degree);
+      std::ofstream vtu(dir / vtu_name);
+      out.write_vtu(vtu);
+    }
+
+    void
+    PreloadAnalysis::output_results() const
+    {
+      TimerOutput::Scope t(timer, "output");
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      const fs::path dir(work_dir);
+      // contact.csv and contact_surface.vtu: the final state; contact.pvd:
+      // every load step (time = load factor)
+      write_contact("contact.csv", "contact_surface.vtu");
       {
-        PadFaceOutput out;
-        out.attach_dof_handler(model.dof_handler);
-        out.add_data_vector(fields,
-                            std::vector<std::string>{"contact_pressure_Pa",
-                                                     "friction_traction_Pa",
-                                                     "status"});
-        out.build_patches(model.mapping, model.fe.degree);
-        std::ofstream vtu(dir / "contact_surface.vtu");
-        out.write_vtu(vtu);
         std::ofstream pvd(dir / "contact.pvd");
-        DataOutBase::write_pvd_record(
-          pvd, {std::make_pair(0., std::string("contact_surface.vtu"))});
+        DataOutBase::write_pvd_record(pvd, steps);
       }
       {
-        DataOut<3> out;
-        out.attach_dof_handler(model.dof_handler);
-        out.add_data_vector(
-          state.displacement, std::vector<std::string>(3, "displacement_m"),
-          DataOut<3>::type_dof_data,
-          std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-            3, DataComponentInterpretation::component_is_part_of_vector));
-        out.build_patches(model.mapping, 1);
-        std::ofstream vtu(dir / "displacement.vtu");
-        out.write_vtu(vtu);
+        std::ofstream out(dir / "preload_summary.txt");
+        out << std::setprecision(8) << "normal_force_N " << state.normal_force
+            << "\nfriction_force_N " << state.tangential_force
+            << "\nspring_force_N " << spring_reaction << "\ncontact_area_m2 "
+            << state.contact_area << "\npad_face_area_m2 " << mortar.slave_area
+            << "\nactive_set_iterations " << state.history.size()
+            << "\nload_steps " << steps.size() << "\n";
       }
+      DataOut<3> out;
+      out.attach_dof_handler(model.dof_handler);
+      out.add_data_vector(
+        state.displacement, std::vector<std::string>(3, "displacement_m"),
+        DataOut<3>::type_dof_data,
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+          3, DataComponentInterpretation::component_is_part_of_vector));
+      out.build_patches(model.mapping, 1);
+      std::ofstream vtu(dir / "displacement.vtu");
+      out.write_vtu(vtu);
     }
 
     void

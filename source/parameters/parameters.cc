@@ -90,7 +90,10 @@ namespace squeal
                         "along the disc's sliding direction (Interface/"
                         "Sliding direction), traction mu p, as in CEA "
                         "practice; coulomb: stick/slip from the incremental "
-                        "Coulomb law, the load in Load steps increments; "
+                        "Coulomb law, the load in Load steps increments "
+                        "(verified on the Cattaneo-Mindlin problem; on the "
+                        "TriboBrake its stick/slip sets can still cycle, and "
+                        "the run then stops with the active-set history); "
                         "frictionless. mu is Interface/Friction coefficient.");
       prm.declare_entry("Search distance", str(search_distance),
                         Patterns::Double(1e-9),
@@ -99,7 +102,9 @@ namespace squeal
                         "refused.");
       prm.declare_entry("Load steps", std::to_string(load_steps),
                         Patterns::Integer(1, 1000),
-                        "Increments of the normal force (coulomb).");
+                        "Increments of the normal force; each step's "
+                        "contact state is written (contact_step_NNN.csv, "
+                        "contact.pvd). With coulomb the path matters.");
       prm.leave_subsection();
     }
 

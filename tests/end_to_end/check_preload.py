@@ -16,6 +16,9 @@ Runs build/squeal on the coarse preload and checks:
   sliding), and the pressure is highest at the leading edge (smallest y, where
   the disc enters) with the trailing edge lifted (thesis sec. 3.4);
 - frictionless: no friction force, springs unloaded;
+- 4 load steps: a contact table and a pad-face file per step, listed in
+  contact.pvd, and the same final state as one step (steady sliding is
+  path-independent);
 - a second run into the same directory is refused.
 """
 import csv
@@ -107,6 +110,20 @@ if abs(s0["friction_force_N"]) > 1e-12 or abs(s0["spring_force_N"]) > 1e-6:
 if abs(s0["normal_force_N"] / N - 1) > 1e-8:
     fail(f"frictionless normal force {s0['normal_force_N']}")
 print("frictionless: no friction, springs unloaded: ok")
+
+out4, s4, _ = run("steps", "subsection Preload\n  set Load steps = 4\nend\n")
+for k in range(1, 5):
+    if not os.path.isfile(os.path.join(out4, f"contact_step_{k:03d}.csv")):
+        fail(f"missing contact_step_{k:03d}.csv")
+pvd = open(os.path.join(out4, "contact.pvd")).read()
+if pvd.count("<DataSet") != 4:
+    fail("contact.pvd does not list the 4 load steps")
+if abs(s4["normal_force_N"] / N - 1) > 1e-8 or s4["load_steps"] != 4:
+    fail(f"4 steps: normal force {s4['normal_force_N']}")
+if abs(s4["friction_force_N"] - s["friction_force_N"]) > 1e-8 * N:
+    fail("steady sliding in 4 steps ends elsewhere than in one")
+print("preload in 4 load steps: a table and a pad-face file per step, the "
+      "same final state as in one step: ok")
 
 again = subprocess.run([squeal, "sliding.prm"], capture_output=True, text=True)
 if again.returncode == 0 or "exists" not in again.stderr:

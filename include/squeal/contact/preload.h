@@ -31,6 +31,8 @@
 #include <squeal/physics/structural_model.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace squeal
 {
@@ -52,9 +54,10 @@ namespace squeal
        * DIRECTORY.partial, renamed at the end): contact.csv (per pad node:
        * x, y, z [m], p_N, t_T1 (along the sliding direction), t_T2 [Pa] as
        * nodal fields (MortarOperators::nodal_pressure), gap [m], status 0
-       * separated / 1 stick / 2 slip), preload_summary.txt,
-       * contact.pvd + contact_surface.vtu (the pad face with its contact
-       * fields), displacement.vtu.
+       * separated / 1 stick / 2 slip) of the final state and
+       * contact_step_NNN.csv of every load step, preload_summary.txt,
+       * contact.pvd (the pad face with its contact fields at every load
+       * step, time = load factor) + contact_surface*.vtu, displacement.vtu.
        * @throws std::runtime_error under mpirun with more than one rank, on
        * an existing output folder without Output/Overwrite, or when the
        * contact solve fails (nothing is renamed then).
@@ -88,6 +91,9 @@ namespace squeal
       void assemble_load();
       void solve();
       void output_results() const;
+      /** Writes the current state's contact table and pad-face fields. */
+      void write_contact(const std::string &csv_name,
+                         const std::string &vtu_name) const;
 
       const parameters::AllParameters &prm;
       const dealii::ParameterHandler  &handler;
@@ -104,6 +110,8 @@ namespace squeal
       MortarOperators                   mortar;
       ContactSolution                   state;
       double                            spring_reaction = 0.;
+      /// (load factor, pad-face file) of every load step, for contact.pvd
+      std::vector<std::pair<double, std::string>> steps;
     };
   } // namespace contact
 } // namespace squeal

@@ -253,7 +253,7 @@ namespace squeal
       double       normal_force = 100.;          ///< N, on the support's top
       std::string  friction = "steady sliding";  ///< or `coulomb`, `frictionless`
       double       search_distance = 1e-3;       ///< m, contact search reach
-      unsigned int load_steps = 1;               ///< `coulomb`: increments
+      unsigned int load_steps = 1;               ///< increments of the load
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };
