@@ -153,26 +153,17 @@ namespace squeal
               const double area = std::abs(signed_area(overlap));
               if (area < 1e-14 * std::abs(signed_area(pf.outline)))
                 continue;
-              for (unsigned int t = 1; t + 1 < overlap.size(); ++t)
+              for (const auto &[x2, w] : polygon_quadrature(overlap, tri))
                 {
-                  const Point<2> a = overlap[0], b = overlap[t],
-                                 c = overlap[t + 1];
-                  const double tri_area = std::abs(cross(a, b, c)) / 2;
-                  for (unsigned int k = 0; k < tri.size(); ++k)
-                    {
-                      const Point<2> r = tri.point(k);
-                      const Point<2> x2 = a + (b - a) * r[0] + (c - a) * r[1];
-                      const Point<3> x(x2[0], x2[1], 0.);
-                      Point<3>       pu, du;
-                      // The straight-sided outline can stray outside a
-                      // curved disc cell by a sliver; the point then still
-                      // belongs to this cell's polynomial extension.
-                      pu = mapping.transform_real_to_unit_cell(pf.cell, x);
-                      du = mapping.transform_real_to_unit_cell(df.cell, x);
-                      const double w = tri.weight(k) * 2 * tri_area;
-                      points.push_back({pf.cell, df.cell, pu, du, w});
-                      covered += w;
-                    }
+                  const Point<3> x(x2[0], x2[1], 0.);
+                  Point<3>       pu, du;
+                  // The straight-sided outline can stray outside a
+                  // curved disc cell by a sliver; the point then still
+                  // belongs to this cell's polynomial extension.
+                  pu = mapping.transform_real_to_unit_cell(pf.cell, x);
+                  du = mapping.transform_real_to_unit_cell(df.cell, x);
+                  points.push_back({pf.cell, df.cell, pu, du, w});
+                  covered += w;
                 }
             }
         }

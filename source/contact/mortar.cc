@@ -283,38 +283,29 @@ namespace squeal
                   std::abs(signed_area(overlap)) < 1e-12 * std::abs(signed_area(own)))
                 continue;
               in_reach = true;
-              for (unsigned int t = 1; t + 1 < overlap.size(); ++t)
+              for (const auto &[x2, w] : polygon_quadrature(overlap, tri))
                 {
-                  const Point<2> a = overlap[0], b = overlap[t],
-                                 c = overlap[t + 1];
-                  const double area = std::abs(cross(a, b, c)) / 2;
-                  for (unsigned int k = 0; k < tri.size(); ++k)
+                  const Point<3> xs = sf.centre + x2[0] * e1 + x2[1] * e2;
+                  // along the slave normal onto the master face's plane
+                  const double   s = ((mf.centre - xs) * mf.normal) /
+                                   (n * mf.normal);
+                  const Point<3> xm = xs + s * n;
+                  const Point<3> us =
+                    unit_on_face(mapping, sf.cell, sf.face_no, xs);
+                  const Point<3> um =
+                    unit_on_face(mapping, mf.cell, mf.face_no, xm);
+                  op.covered_area += w;
+                  std::vector<double> phi(n_f);
+                  for (unsigned int b2 = 0; b2 < n_f; ++b2)
+                    phi[b2] = scalar.shape_value(sf.nodes[b2].second, us);
+                  for (unsigned int a2 = 0; a2 < n_f; ++a2)
                     {
-                      const Point<2> r  = tri.point(k);
-                      const Point<2> x2 = a + (b - a) * r[0] + (c - a) * r[1];
-                      const Point<3> xs = sf.centre + x2[0] * e1 + x2[1] * e2;
-                      // along the slave normal onto the master face's plane
-                      const double   s = ((mf.centre - xs) * mf.normal) /
-                                       (n * mf.normal);
-                      const Point<3> xm = xs + s * n;
-                      const Point<3> us =
-                        unit_on_face(mapping, sf.cell, sf.face_no, xs);
-                      const Point<3> um =
-                        unit_on_face(mapping, mf.cell, mf.face_no, xm);
-                      const double w = 2. * area * tri.weight(k);
-                      op.covered_area += w;
-                      std::vector<double> phi(n_f);
+                      double psi = 0.;
                       for (unsigned int b2 = 0; b2 < n_f; ++b2)
-                        phi[b2] = scalar.shape_value(sf.nodes[b2].second, us);
-                      for (unsigned int a2 = 0; a2 < n_f; ++a2)
-                        {
-                          double psi = 0.;
-                          for (unsigned int b2 = 0; b2 < n_f; ++b2)
-                            psi += A(a2, b2) * phi[b2];
-                          for (const auto &[l, sc] : mf.nodes)
-                            M[sf.nodes[a2].first][l] +=
-                              w * psi * scalar.shape_value(sc, um);
-                        }
+                        psi += A(a2, b2) * phi[b2];
+                      for (const auto &[l, sc] : mf.nodes)
+                        M[sf.nodes[a2].first][l] +=
+                          w * psi * scalar.shape_value(sc, um);
                     }
                 }
             }

@@ -9,8 +9,11 @@
  */
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/quadrature.h>
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 #include <vector>
 
 namespace squeal
@@ -76,6 +79,30 @@ namespace squeal
             }
         }
       return out;
+    }
+
+    /**
+     * Quadrature of a convex polygon: the fan of triangles from its first
+     * vertex, each carrying @p triangle_rule (a rule on the reference
+     * triangle, weights summing to 1/2, e.g. QGaussSimplex<2>).
+     * @return (point, weight [m^2]) pairs; the weights sum to the area.
+     */
+    inline std::vector<std::pair<dealii::Point<2>, double>>
+    polygon_quadrature(const Polygon &p, const dealii::Quadrature<2> &triangle_rule)
+    {
+      std::vector<std::pair<dealii::Point<2>, double>> q;
+      for (unsigned int t = 1; t + 1 < p.size(); ++t)
+        {
+          const dealii::Point<2> a = p[0], b = p[t], c = p[t + 1];
+          const double           area = std::abs(cross(a, b, c)) / 2;
+          for (unsigned int k = 0; k < triangle_rule.size(); ++k)
+            {
+              const dealii::Point<2> r = triangle_rule.point(k);
+              q.emplace_back(a + (b - a) * r[0] + (c - a) * r[1],
+                             2. * area * triangle_rule.weight(k));
+            }
+        }
+      return q;
     }
   } // namespace contact
 } // namespace squeal
