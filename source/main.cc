@@ -10,6 +10,7 @@
 #include <squeal/cea/complex_eigenvalue_analysis.h>
 #include <squeal/contact/preload.h>
 #include <squeal/parameters/parameters.h>
+#include <squeal/transient/braking.h>
 
 #include <iostream>
 #include <string>
@@ -63,7 +64,10 @@ main(int argc, char **argv)
             {
               std::cout << file << ": valid (scene " << prm.scene.bodies
                         << ", " << prm.scene.analysis;
-              if (prm.scene.analysis != "preload")
+              if (prm.scene.analysis == "braking")
+                std::cout << ", " << prm.transient.normal_force << " N, "
+                          << prm.transient.end_time << " s";
+              else if (prm.scene.analysis != "preload")
                 std::cout << ", " << prm.sweep.second.values.size() << " x "
                           << prm.sweep.first.values.size() << " sweep points";
               else
@@ -76,7 +80,20 @@ main(int argc, char **argv)
       // Catch inside the analysis' scope so that its TimerOutput is not
       // destroyed while an exception is in flight.
       std::string failure;
-      if (prm.scene.analysis == "preload")  // else cea, preloaded cea
+      if (prm.scene.analysis == "braking")
+        {
+          squeal::transient::BrakingAnalysis analysis(prm, handler,
+                                                      MPI_COMM_WORLD);
+          try
+            {
+              analysis.run();
+            }
+          catch (const std::exception &e)
+            {
+              failure = e.what();
+            }
+        }
+      else if (prm.scene.analysis == "preload")  // else cea, preloaded cea
         {
           squeal::contact::PreloadAnalysis analysis(prm, handler,
                                                     MPI_COMM_WORLD);

@@ -13,6 +13,7 @@
 
 #include <squeal/contact/preload.h>
 #include <squeal/geometry/tribobrake_mesh.h>
+#include <squeal/output/face_output.h>
 #include <squeal/output/output_directory.h>
 
 #include <cmath>
@@ -27,71 +28,13 @@ namespace squeal
     using namespace dealii;
     namespace fs = std::filesystem;
 
-    namespace
+    std::pair<types::global_dof_index, Point<3>>
+    tribobrake_contact_system(const physics::StructuralModel &model,
+                              SparsityPattern                &pattern,
+                              SparseMatrix<double>           &stiffness,
+                              AffineConstraints<double>      &constraints)
     {
-      // DataOutFaces on the pad's contact face only.
-      class PadFaceOutput : public DataOutFaces<3>
-      {
-      public:
-        PadFaceOutput()
-          : DataOutFaces<3>(false)
-        {}
-        FaceDescriptor
-        first_face() override
-        {
-          for (const auto &cell : this->triangulation->active_cell_iterators())
-            for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary() &&
-                  cell->face(f)->boundary_id() ==
-                    geometry::boundary::pad_contact)
-                return {cell, f};
-          return {};
-        }
-        FaceDescriptor
-        next_face(const FaceDescriptor &face) override
-        {
-          auto         cell  = face.first;
-          unsigned int start = face.second + 1;
-          for (; cell != this->triangulation->end(); ++cell, start = 0)
-            if (cell->is_active())
-              for (unsigned int f = start; f < cell->n_faces(); ++f)
-                if (cell->face(f)->at_boundary() &&
-                    cell->face(f)->boundary_id() ==
-                      geometry::boundary::pad_contact)
-                  return {cell, f};
-          return {};
-        }
-      };
-    } // namespace
-
-    PreloadAnalysis::PreloadAnalysis(const parameters::AllParameters &prm,
-                                     const ParameterHandler          &handler,
-                                     MPI_Comm                         comm)
-      : prm(prm)
-      , handler(handler)
-      , comm(comm)
-      , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
-      , timer(pcout, TimerOutput::summary, TimerOutput::wall_times)
-      , model(prm, comm)
-    {}
-
-    void
-    PreloadAnalysis::setup_system()
-    {
-      TimerOutput::Scope t(timer, "setup and assembly");
-      if (Utilities::MPI::n_mpi_processes(comm) > 1)
-        throw std::runtime_error(
-          "the preload is serial for now (one direct solve of the contact "
-          "system); run it without mpirun");
-      work_dir =
-        output::partial_directory(prm.output.directory, prm.output.overwrite);
-      output::fresh_directory(work_dir);
-      {
-        std::ofstream out(fs::path(work_dir) / "parameters.prm");
-        handler.print_parameters(out, ParameterHandler::PRM);
-      }
-      model.setup_and_assemble(pcout);
-
+      const auto &prm = model.prm;
       // K_s at the nominal point, as a deal.II matrix.
       const physics::MatrixParts parts = model.parts();
       physics::PETScMatrix       K;
@@ -143,15 +86,15 @@ namespace squeal
           stiffness.set(held, held, diag);
         }
       constraints.close();
-      pcout << "Preload: " << n << " DoFs; radial displacement held at ("
-            << support_points[held][0] << ", " << support_points[held][1]
-            << ", " << support_points[held][2] << ") m" << std::endl;
+      return {held, support_points[held]};
     }
 
-    void
-    PreloadAnalysis::assemble_load()
+    Vector<double>
+    support_top_load(const physics::StructuralModel  &model,
+                     const AffineConstraints<double> &constraints,
+                     const double                     force)
     {
-      TimerOutput::Scope t(timer, "setup and assembly");
+      Vector<double> load;
       // Uniform pressure on the support's top: Normal force / top area.
       const auto        &fe = model.fe;
       const QGauss<2>     q(fe.degree + 1);
@@ -169,7 +112,7 @@ namespace squeal
             }
       if (!(area > 0.))
         throw std::runtime_error("the support has no top face to load");
-      const double traction = -prm.preload.normal_force / area;
+      const double traction = -force / area;
       load.reinit(model.n_dofs());
       Vector<double>                       cell_f(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
@@ -187,6 +130,49 @@ namespace squeal
               cell->get_dof_indices(dofs);
               constraints.distribute_local_to_global(cell_f, dofs, load);
             }
+      return load;
+    }
+
+    PreloadAnalysis::PreloadAnalysis(const parameters::AllParameters &prm,
+                                     const ParameterHandler          &handler,
+                                     MPI_Comm                         comm)
+      : prm(prm)
+      , handler(handler)
+      , comm(comm)
+      , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+      , timer(pcout, TimerOutput::summary, TimerOutput::wall_times)
+      , model(prm, comm)
+    {}
+
+    void
+    PreloadAnalysis::setup_system()
+    {
+      TimerOutput::Scope t(timer, "setup and assembly");
+      if (Utilities::MPI::n_mpi_processes(comm) > 1)
+        throw std::runtime_error(
+          "the preload is serial for now (one direct solve of the contact "
+          "system); run it without mpirun");
+      work_dir =
+        output::partial_directory(prm.output.directory, prm.output.overwrite);
+      output::fresh_directory(work_dir);
+      {
+        std::ofstream out(fs::path(work_dir) / "parameters.prm");
+        handler.print_parameters(out, ParameterHandler::PRM);
+      }
+      model.setup_and_assemble(pcout);
+
+      const Point<3> held =
+        tribobrake_contact_system(model, pattern, stiffness, constraints).second;
+      pcout << "Preload: " << model.n_dofs()
+            << " DoFs; radial displacement held at (" << held[0] << ", "
+            << held[1] << ", " << held[2] << ") m" << std::endl;
+    }
+
+    void
+    PreloadAnalysis::assemble_load()
+    {
+      TimerOutput::Scope t(timer, "setup and assembly");
+      load = support_top_load(model, constraints, prm.preload.normal_force);
     }
 
     void
@@ -318,7 +304,7 @@ namespace squeal
           fields[mortar.slave_dofs[j][1]] = along[j];
           fields[mortar.slave_dofs[j][2]] = state.status[j];
         }
-      PadFaceOutput out;
+      output::BoundaryFaceOutput out(geometry::boundary::pad_contact);
       out.attach_dof_handler(model.dof_handler);
       out.add_data_vector(fields,
                           std::vector<std::string>{"contact_pressure_Pa",

@@ -51,7 +51,7 @@ namespace squeal
                         "tribobrake: disc, pad, support and springs with the "
                         "friction interface; disc: the clamped disc alone.");
       prm.declare_entry("Analysis", analysis,
-                        Patterns::Selection("cea|preload|preloaded cea"),
+                        Patterns::Selection("cea|preload|preloaded cea|braking"),
                         "cea: complex eigenvalue analysis over the sweep; "
                         "preload: the static frictional contact of the pad "
                         "on the disc under Preload/Normal force (mortar "
@@ -59,7 +59,8 @@ namespace squeal
                         "fields; preloaded cea: the preload at the file's "
                         "nominal parameters, then the CEA with the interface "
                         "stiffness and friction coupling only where the pad "
-                        "stayed in contact (serial).");
+                        "stayed in contact (serial); braking: the transient "
+                        "braking simulation (subsection Transient).");
       prm.leave_subsection();
     }
 
@@ -117,6 +118,112 @@ namespace squeal
       search_distance = prm.get_double("Search distance");
       load_steps      = prm.get_integer("Load steps");
       prm.leave_subsection();
+    }
+
+    void
+    Transient::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Transient");
+      prm.declare_entry("Angular velocity", str(angular_velocity),
+                        Patterns::Double(0.),
+                        "Disc speed [rad/s] (10 rpm = 1.0472). The rotation "
+                        "enters as the sliding velocity omega r of the disc "
+                        "face under the pad, in the disc's fixed mesh "
+                        "(Interface/Rotation sense); transport terms, of "
+                        "order omega / omega_mode (1e-4), are neglected.");
+      prm.declare_entry("Normal force", str(normal_force), Patterns::Double(0.),
+                        "Final force on the support's top [N].");
+      prm.declare_entry("Ramp duration", str(ramp_duration),
+                        Patterns::Double(0.),
+                        "The force rises as (1 - cos(pi t / T)) / 2 over this "
+                        "time [s], so that the first contact does not excite "
+                        "the structure, then is held.");
+      prm.declare_entry("End time", str(end_time), Patterns::Double(1e-9),
+                        "Simulated time [s].");
+      prm.declare_entry("Time step", str(time_step), Patterns::Double(0.),
+                        "Time step [s]; 0: Safety factor x the computed "
+                        "stability limit. A step above the limit is refused.");
+      prm.declare_entry("Safety factor", str(safety_factor),
+                        Patterns::Double(1e-3, 1.),
+                        "Fraction of the stability limit used when Time step "
+                        "is 0.");
+      prm.declare_entry("Beta2", str(beta2), Patterns::Double(0.5, 1.),
+                        "The beta2 parameter of the explicit scheme (thesis "
+                        "eq. 2-6): 0.5 is central differences; larger values "
+                        "damp high frequencies numerically.");
+      prm.declare_entry("Sampling rate", str(sampling_rate),
+                        Patterns::Double(1.),
+                        "Rate [Hz] of forces.csv, probes.csv and the contact "
+                        "history (contact_history.h5); at most 1 / time step.");
+      prm.declare_entry("History start", str(history_start),
+                        Patterns::Double(0.),
+                        "Time [s] of the first sample of the contact history.");
+      prm.declare_entry("Snapshot interval", str(snapshot_interval),
+                        Patterns::Double(0.),
+                        "Time [s] between ParaView snapshots (transient.pvd: "
+                        "displacement, velocity, von Mises stress; "
+                        "contact.pvd: the pad face's contact fields); 0: "
+                        "none besides the animation window.");
+      prm.declare_entry("Animation start", str(animation_start),
+                        Patterns::Double(),
+                        "Start [s] of a window of Animation frames snapshots "
+                        "spread over Animation period (animation.pvd, for "
+                        "one squeal period in ParaView); < 0: the window "
+                        "ends at End time.");
+      prm.declare_entry("Animation period", str(animation_period),
+                        Patterns::Double(0.),
+                        "Length [s] of the animation window: one period of "
+                        "the expected squeal (1 / 3430 Hz for the TriboBrake "
+                        "of the thesis).");
+      prm.declare_entry("Animation frames", std::to_string(animation_frames),
+                        Patterns::Integer(0, 1000),
+                        "Snapshots in the animation window; 0: none.");
+      prm.declare_entry("Spectrum start", str(spectrum_start),
+                        Patterns::Double(),
+                        "Start [s] of the window of the power spectral "
+                        "density (Welch) of the probe's acceleration; < 0: "
+                        "the second half of the run.");
+      prm.declare_entry("Contact tolerance", str(contact_tolerance),
+                        Patterns::Double(1e-16, 1e-2),
+                        "Relative change of the contact multipliers at which "
+                        "projected Gauss-Seidel stops.");
+      prm.declare_entry("Contact iterations", std::to_string(contact_iterations),
+                        Patterns::Integer(1),
+                        "Most projected Gauss-Seidel sweeps per step; more "
+                        "stops the run with the time and the residual.");
+      prm.declare_entry("Initial perturbation", str(initial_perturbation),
+                        Patterns::Double(0.),
+                        "Axial velocity [m/s] given to the disc at t = 0 in "
+                        "the shape of a (0,3) mode (cos 3 theta, rising with "
+                        "the radius), a seed for an instability; 0: none "
+                        "(the load ramp and rounding seed it).");
+      prm.leave_subsection();
+    }
+
+    void
+    Transient::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Transient");
+      angular_velocity     = prm.get_double("Angular velocity");
+      normal_force         = prm.get_double("Normal force");
+      ramp_duration        = prm.get_double("Ramp duration");
+      end_time             = prm.get_double("End time");
+      time_step            = prm.get_double("Time step");
+      safety_factor        = prm.get_double("Safety factor");
+      beta2                = prm.get_double("Beta2");
+      sampling_rate        = prm.get_double("Sampling rate");
+      history_start        = prm.get_double("History start");
+      snapshot_interval    = prm.get_double("Snapshot interval");
+      animation_start      = prm.get_double("Animation start");
+      animation_period     = prm.get_double("Animation period");
+      animation_frames     = prm.get_integer("Animation frames");
+      spectrum_start       = prm.get_double("Spectrum start");
+      contact_tolerance    = prm.get_double("Contact tolerance");
+      contact_iterations   = prm.get_integer("Contact iterations");
+      initial_perturbation = prm.get_double("Initial perturbation");
+      prm.leave_subsection();
+      check(history_start < end_time,
+            "Transient/History start must be below Transient/End time");
     }
 
     void
@@ -714,6 +821,7 @@ namespace squeal
       eigensolver.declare_parameters(prm);
       sweep.declare_parameters(prm);
       preload.declare_parameters(prm);
+      transient.declare_parameters(prm);
       output.declare_parameters(prm);
     }
 
@@ -730,6 +838,7 @@ namespace squeal
       eigensolver.parse_parameters(prm);
       sweep.parse_parameters(prm);
       preload.parse_parameters(prm);
+      transient.parse_parameters(prm);
       output.parse_parameters(prm);
     }
 

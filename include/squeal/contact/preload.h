@@ -38,6 +38,31 @@ namespace squeal
 {
   namespace contact
   {
+    /**
+     * The TriboBrake's structural stiffness K_s at the file's nominal point
+     * (disc, pad, support, springs; no linear interface) as a serial matrix
+     * [N/m] on a new @p pattern, and its constraints: the model's (clamped
+     * disc) plus the radial (x) displacement of the node nearest the centre
+     * of the support's top, held at zero (the loading arm: a sliding contact
+     * does not hold the support along the radius).
+     * @return the held DoF and its position [m]
+     */
+    std::pair<dealii::types::global_dof_index, dealii::Point<3>>
+    tribobrake_contact_system(const physics::StructuralModel    &model,
+                              dealii::SparsityPattern           &pattern,
+                              dealii::SparseMatrix<double>      &stiffness,
+                              dealii::AffineConstraints<double> &constraints);
+
+    /**
+     * The load vector [N] of @p force [N] spread uniformly over the support's
+     * top face, pushing the pad towards the disc (-z), with @p constraints.
+     * @throws std::runtime_error if the scene has no support top face.
+     */
+    dealii::Vector<double>
+    support_top_load(const physics::StructuralModel          &model,
+                     const dealii::AffineConstraints<double> &constraints,
+                     double                                   force);
+
     /** The preload analysis (tutorial shape: setup_system, assemble_load,
      * solve, output_results, run). */
     class PreloadAnalysis

@@ -31,7 +31,8 @@ namespace squeal
       std::string bodies = "tribobrake";
       /// `cea`: complex eigenvalue analysis (sweep); `preload`: the static
       /// frictional contact of the pad on the disc under the normal load;
-      /// `preloaded cea`: the preload, then the CEA on its contact area
+      /// `preloaded cea`: the preload, then the CEA on its contact area;
+      /// `braking`: the transient braking simulation
       std::string analysis = "cea";
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
@@ -258,6 +259,36 @@ namespace squeal
       void parse_parameters(ParameterHandler &prm);
     };
 
+    /**
+     * The transient braking simulation (Scene/Analysis = braking, thesis
+     * § 2.3, 3.2.3): the disc turning at a constant angular velocity, the
+     * normal force ramped on the support's top, frictional contact by
+     * forward-increment Lagrange multipliers, explicit beta2 time scheme
+     * (transient/explicit_dynamics.h).
+     */
+    struct Transient
+    {
+      double angular_velocity = 1.0471975511965976; ///< rad/s (10 rpm)
+      double normal_force     = 100.;   ///< N, final value of the ramp
+      double ramp_duration    = 2e-3;   ///< s, smooth (half-cosine) ramp
+      double end_time         = 0.02;   ///< s
+      double time_step        = 0.;     ///< s; 0: safety factor x limit
+      double safety_factor    = 0.9;    ///< of the stable limit
+      double beta2            = 0.5;    ///< 0.5: central differences
+      double sampling_rate    = 1e6;    ///< Hz, tables and contact history
+      double history_start    = 0.;     ///< s, first sample of the history
+      double snapshot_interval = 1e-3;  ///< s, transient.pvd / contact.pvd
+      double animation_start   = -1.;   ///< s; < 0: ends at end_time
+      double animation_period  = 2.9e-4; ///< s, length of the window
+      unsigned int animation_frames = 20; ///< snapshots over one period
+      double spectrum_start   = -1.;    ///< s; < 0: the second half of the run
+      double       contact_tolerance  = 1e-10; ///< projected Gauss-Seidel
+      unsigned int contact_iterations = 2000;
+      double       initial_perturbation = 0.; ///< m/s, see help
+      void declare_parameters(ParameterHandler &prm) const;
+      void parse_parameters(ParameterHandler &prm);
+    };
+
     /** All parameters of a run. */
     struct AllParameters
     {
@@ -271,6 +302,7 @@ namespace squeal
       Eigensolver eigensolver;
       Sweep       sweep;
       Preload     preload;
+      Transient   transient;
       Output      output;
 
       /** Declares every subsection with defaults, ranges and help. */

@@ -1,0 +1,131 @@
+#ifndef squeal_transient_braking_h
+#define squeal_transient_braking_h
+
+/**
+ * @file
+ * The transient braking simulation of the TriboBrake (Scene/Analysis =
+ * braking; thesis § 2.3, 3.2.3, 3.4): the CEA's structure (disc clamped on
+ * its inner radius, pad, support, springs; physics::StructuralModel) at the
+ * file's nominal parameters, with a lumped mass; the disc turning at
+ * Transient/Angular velocity, treated as steady sliding in the disc's fixed
+ * mesh (the disc is axisymmetric: the rotation enters only as the sliding
+ * velocity omega e_z x x of the disc face in the friction law; transport
+ * terms of order omega / omega_mode, about 1e-4 at 10 rpm, are neglected);
+ * the normal force ramped on the support's top; the pad face (slave) on the
+ * disc face (master) through dual mortar contact with Coulomb friction by
+ * forward-increment Lagrange multipliers; the explicit beta2 scheme
+ * (explicit_dynamics.h). As in the preload, the radial displacement of the
+ * centre of the support's top is held (the loading arm).
+ *
+ * Serial: the contact multipliers are found on one process.
+ */
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <squeal/contact/mortar.h>
+#include <squeal/physics/structural_model.h>
+#include <squeal/transient/explicit_dynamics.h>
+#include <squeal/transient/signal.h>
+#include <squeal/tribology/contact_history.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace squeal
+{
+  namespace transient
+  {
+    /** What a braking run found (after run()). */
+    struct BrakingSummary
+    {
+      unsigned int n_dofs = 0;
+      double time_step = 0., critical_time_step = 0.; ///< s
+      unsigned int n_steps = 0;
+      double wall_time = 0.;          ///< s, the time loop
+      double dominant_frequency = 0.; ///< Hz, probe acceleration
+      GrowthFit growth;               ///< of the probe acceleration
+      bool   separated = false;       ///< a pad node separated after the ramp
+      /// leading-edge nodes, over the spectrum window: min and max pressure
+      /// over the nominal mean pressure (normal force / pad area)
+      double leading_min_over_mean = 0., leading_max_over_mean = 0.;
+      std::string verdict;            ///< stable / unstable ...
+    };
+
+    /** The braking simulation (tutorial shape: setup_system,
+     * assemble_load, solve, output_results, run). */
+    class BrakingAnalysis
+    {
+    public:
+      /** Keeps references to @p prm and @p handler (echoed into the output
+       * folder). */
+      BrakingAnalysis(const parameters::AllParameters &prm,
+                      const dealii::ParameterHandler  &handler,
+                      MPI_Comm                         comm);
+
+      /**
+       * Runs the simulation; results in Output/Directory (written to
+       * DIRECTORY.partial, renamed at the end): forces.csv, probes.csv,
+       * spectrum.csv, summary.csv, contact_history.h5, transient.pvd,
+       * contact.pvd, animation.pvd with their .vtu files, parameters.prm.
+       * @throws std::runtime_error under mpirun with more than one rank, on
+       * an existing output folder without Output/Overwrite, on a time step
+       * above the stability limit, on a mesh with hanging nodes, or when
+       * the contact multipliers do not converge (nothing is renamed then).
+       */
+      void
+      run();
+
+      /** The result (after run()). */
+      const BrakingSummary &
+      summary() const
+      {
+        return result;
+      }
+
+    private:
+      void setup_system();
+      void assemble_load();
+      void solve();
+      void output_results();
+      void record_sample();
+      void write_snapshot(const std::string &series, unsigned int index);
+
+      const parameters::AllParameters &prm;
+      const dealii::ParameterHandler  &handler;
+      MPI_Comm                         comm;
+      dealii::ConditionalOStream       pcout;
+      dealii::TimerOutput              timer;
+      std::string                      work_dir;
+
+      physics::StructuralModel          model;
+      dealii::AffineConstraints<double> constraints;
+      dealii::SparsityPattern           pattern;
+      dealii::SparseMatrix<double>      stiffness;
+      dealii::Vector<double>            mass;  ///< lumped [kg]
+      dealii::Vector<double>            load;  ///< at the full normal force [N]
+      std::vector<bool>                 fixed;
+      contact::MortarOperators          mortar;
+      std::unique_ptr<ExplicitDynamics> dynamics;
+
+      dealii::Tensor<1, 3>     sliding, radial; ///< map frame
+      std::array<dealii::types::global_dof_index, 3> probe_dofs;
+      dealii::Point<3>                  probe_point;
+      std::vector<unsigned int>         leading_nodes;
+      tribology::ContactHistory         history;
+      /// per sample: t, F_N, F_T (sliding), F_T (radial), area, stick,
+      /// slip, separated, probe u, v, a (3 each)
+      std::vector<std::array<double, 17>> samples;
+      std::vector<std::pair<double, std::string>> snapshots, frames, faces;
+      BrakingSummary                    result;
+    };
+  } // namespace transient
+} // namespace squeal
+
+#endif

@@ -1,0 +1,225 @@
+#ifndef squeal_transient_explicit_dynamics_h
+#define squeal_transient_explicit_dynamics_h
+
+/**
+ * @file
+ * Explicit time integration of linear elastic bodies with Rayleigh damping
+ * and frictional contact on dual mortar operators (contact/mortar.h):
+ *
+ *   M a + C v + K u = f + G^T Lambda,   C = alpha M + beta K,
+ *
+ * M lumped (diagonal, Gauss-Lobatto quadrature: lumped_mass()).
+ *
+ * Time scheme: the beta2 method (Carpenter, Taylor & Katona, IJNME 32, 1991,
+ * eq. 9-10; Massi's thesis, eq. 2-6), beta2 in [1/2, 1], 1/2 being central
+ * differences:
+ *   u_{n+1} = u_n + dt v_n + dt^2/2 a_n,
+ *   v_{n+1} = v_n + dt ((1 - beta2) a_n + beta2 a_{n+1}).
+ * The damping force at t_n uses the predicted velocity
+ * v~_n = v_{n-1} + dt (1 - beta2) a_{n-1} (for beta2 = 1/2 the half-step
+ * velocity v_{n-1/2}, as in Belytschko's central difference scheme), so
+ * every step costs one product with K: K (u_n + beta v~_n).
+ *
+ * Contact: the forward-increment Lagrange multiplier method (Carpenter et
+ * al. 1991): the multipliers Lambda_n act at t_n and are chosen so that the
+ * displacement u_{n+1} they produce satisfies the contact conditions at
+ * t_{n+1}. Per slave node j (multipliers z_j >= 0 normal pressure, lambda_j
+ * tangential friction traction, Pa):
+ *   - normal: weighted gap g_j(u_{n+1}) >= 0, z_j >= 0, z_j g_j = 0;
+ *   - Coulomb friction without regularisation on the weighted slip
+ *     increment s_j of the slave against the master over the step (the
+ *     elastic motion and the master's rigid sliding velocity, e.g. the
+ *     disc's rotation): stick (s_j = 0) where |lambda_j| < mu z_j, slip
+ *     (lambda_j = mu z_j s_j / |s_j|, the friction on the slave opposes its
+ *     slip) otherwise; separated where z_j = 0.
+ * The Delassus system c G M^-1 G^T (c = dt^2 (beta2 + 1/2), interface nodes
+ * only) is solved by projected Gauss-Seidel, node by node: with a lumped
+ * mass each node's 3 x 3 block is a multiple of the identity, so the local
+ * problem (normal projection, then the radial return onto the Coulomb disc)
+ * is solved exactly.
+ */
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <squeal/contact/mortar.h>
+
+#include <functional>
+#include <vector>
+
+namespace squeal
+{
+  namespace transient
+  {
+    /**
+     * The lumped (diagonal) mass of an FE_Q^3 field [kg per DoF]: the
+     * consistent mass integrated with the Gauss-Lobatto rule on the element's
+     * nodes (degree + 1 points per direction), which is diagonal and positive
+     * for every degree (for degree 2 the row-sum mass would have negative
+     * vertex entries).
+     * @param density kg/m^3 of a cell
+     * @return n_dofs entries, each > 0
+     */
+    dealii::Vector<double>
+    lumped_mass(const dealii::DoFHandler<3> &dof_handler,
+                const dealii::Mapping<3>    &mapping,
+                const std::function<double(
+                  const dealii::DoFHandler<3>::active_cell_iterator &)> &density);
+
+    /** The stability limit of the explicit scheme. */
+    struct StableTimeStep
+    {
+      double omega_max   = 0.; ///< largest eigenvalue of M^-1 K, sqrt [rad/s]
+      double critical    = 0.; ///< largest stable time step [s]
+      unsigned int lanczos_steps = 0;
+    };
+
+    /**
+     * The largest stable time step of the scheme above: omega_max^2, the
+     * largest eigenvalue of M^-1 K on the free DoFs, by the Lanczos process
+     * of deal.II's SolverCG (its Ritz values) on M^-1/2 K M^-1/2, raised by
+     * the residual bound of the top Ritz pair so that it is not an
+     * under-estimate; then
+     *   dt_c = (sqrt(2 / beta2) / omega_max) (sqrt(1 + z^2) - z),
+     *   z = beta omega_max / 2
+     * (Belytschko, Liu & Moran, Nonlinear Finite Elements, 2000, eq. 6.3.26
+     * for central differences with stiffness-proportional damping; the
+     * factor sqrt(2 / beta2) / 2 is the explicit Newmark limit for beta2
+     * above 1/2).
+     * @param K stiffness [N/m], symmetric, n x n
+     * @param mass lumped mass [kg], n
+     * @param fixed n flags: DoFs held at zero (left out)
+     * @param beta Rayleigh stiffness coefficient [s]
+     * @param beta2 in [1/2, 1]
+     */
+    StableTimeStep
+    stable_time_step(const dealii::SparseMatrix<double> &K,
+                     const dealii::Vector<double>       &mass,
+                     const std::vector<bool>            &fixed,
+                     double                              beta,
+                     double                              beta2,
+                     unsigned int                        lanczos_steps = 80);
+
+    /** Settings of the integrator. */
+    struct ExplicitSettings
+    {
+      double time_step = 0.;  ///< s, must not exceed the stable limit
+      double beta2     = 0.5; ///< in [1/2, 1]
+      double alpha     = 0.;  ///< Rayleigh, mass [1/s]
+      double beta      = 0.;  ///< Rayleigh, stiffness [s]
+      double friction_coefficient = 0.; ///< Coulomb mu [-]
+      double       pgs_tolerance      = 1e-10; ///< relative change of Lambda
+      unsigned int pgs_max_iterations = 2000;
+    };
+
+    /** The contact state of one step (n_s slave nodes). */
+    struct ContactStep
+    {
+      dealii::Vector<double> pressure; ///< n_s, z_j [Pa]
+      /// n_s: friction traction on the slave (world frame) [Pa]
+      std::vector<dealii::Tensor<1, 3>> traction;
+      std::vector<int>       status;   ///< n_s: 0 separated, 1 stick, 2 slip
+      dealii::Vector<double> slip_velocity; ///< n_s, |s_j| / (D_jj dt) [m/s]
+      dealii::Tensor<1, 3>   force;         ///< on the slave body [N]
+      double       normal_force  = 0.;      ///< sum D_jj z_j [N]
+      double       contact_area  = 0.;      ///< sum D_jj over z_j > 0 [m^2]
+      unsigned int n_stick = 0, n_slip = 0, n_separated = 0;
+      unsigned int pgs_iterations = 0;
+      double       pgs_change = 0.; ///< last relative change
+    };
+
+    /**
+     * The integrator. One step() per time step; between steps the state at
+     * t_n (displacement, velocity, acceleration, contact) can be read.
+     */
+    class ExplicitDynamics
+    {
+    public:
+      /**
+       * @param K stiffness [N/m] (kept by reference), n x n
+       * @param mass lumped mass [kg], n entries > 0
+       * @param fixed n flags: DoFs held at zero
+       * @param dt_critical the stable limit (stable_time_step())
+       * @throws std::runtime_error if settings.time_step is not positive or
+       * exceeds @p dt_critical (the message gives the limit), or beta2 is
+       * outside [1/2, 1].
+       */
+      ExplicitDynamics(const dealii::SparseMatrix<double> &K,
+                       const dealii::Vector<double>       &mass,
+                       const std::vector<bool>            &fixed,
+                       const ExplicitSettings             &settings,
+                       double                              dt_critical);
+
+      /**
+       * Adds frictional contact on @p mortar (kept by reference).
+       * @param master_velocity rigid velocity of a master point [m/s] (the
+       * disc's rotation omega e_z x x); empty: at rest
+       */
+      void
+      set_contact(const contact::MortarOperators &mortar,
+                  const std::function<dealii::Tensor<1, 3>(
+                    const dealii::Point<3> &)> &master_velocity = {});
+
+      /** Initial displacement [m] and velocity [m/s] at t = 0 (n each). */
+      void
+      initialise(const dealii::Vector<double> &u0,
+                 const dealii::Vector<double> &v0);
+
+      /**
+       * Completes the state at t_n = n dt under the external force @p f_n
+       * [N] (n entries): the acceleration, the velocity, the contact
+       * multipliers, and the displacement at t_{n+1}. The next call moves to
+       * t_{n+1} first.
+       * @throws std::runtime_error if projected Gauss-Seidel does not reach
+       * its tolerance within its iteration limit, or the state is not
+       * finite (naming the time and the iteration count).
+       */
+      void
+      step(const dealii::Vector<double> &f_n);
+
+      double time() const { return n_step * settings.time_step; }
+      unsigned int step_number() const { return n_step; }
+      /** u_n [m], v_n [m/s], a_n [m/s^2] at time(). */
+      const dealii::Vector<double> &displacement() const { return u; }
+      const dealii::Vector<double> &velocity() const { return v; }
+      const dealii::Vector<double> &acceleration() const { return a; }
+      /** The contact multipliers of time() (empty without contact). */
+      const ContactStep &contact_state() const { return contact; }
+      /** 1/2 v^T M v [J]. */
+      double kinetic_energy() const;
+      /** 1/2 u^T K u [J]. */
+      double strain_energy() const;
+
+      /** The whole state, for checkpoints: n, u, v~, a, Lambda. */
+      std::vector<double> save_state() const;
+      /** Restores save_state() output. @throws on a size mismatch. */
+      void load_state(const std::vector<double> &state);
+
+    private:
+      void solve_contact();
+
+      const dealii::SparseMatrix<double> &K;
+      const dealii::Vector<double>       &mass;
+      std::vector<bool>                  fixed;
+      ExplicitSettings                   settings;
+      const contact::MortarOperators    *mortar = nullptr;
+
+      unsigned int           n_step  = 0;
+      bool                   pending = false; ///< t_n complete, not advanced
+      dealii::Vector<double> u, v, a, v_pred, u_next, work;
+
+      /// per slave node: (node DoFs, weight w_k [m^2]) of the slave node
+      /// (-D_jj) and its master nodes (M_jl)
+      std::vector<std::vector<std::pair<contact::NodeDofs, double>>> rows;
+      std::vector<double>               delassus; ///< sum w^2 / m per node
+      std::vector<dealii::Tensor<1, 3>> master_slide; ///< sum M_jl V(x_l)
+      std::vector<dealii::Tensor<1, 3>> multiplier;   ///< z n + lambda
+      ContactStep                       contact;
+    };
+  } // namespace transient
+} // namespace squeal
+
+#endif

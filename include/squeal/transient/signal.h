@@ -1,0 +1,79 @@
+#ifndef squeal_transient_signal_h
+#define squeal_transient_signal_h
+
+/**
+ * @file
+ * Signal processing of the transient results: the power spectral density of a
+ * uniformly sampled signal by Welch's method (FFTW), the dominant frequency
+ * of a window, and the envelope of a growing oscillation with its
+ * exponential growth rate and limit cycle.
+ */
+
+#include <string>
+#include <vector>
+
+namespace squeal
+{
+  namespace transient
+  {
+    /** A one-sided power spectral density. */
+    struct Spectrum
+    {
+      std::vector<double> frequency; ///< Hz, bins 0 .. rate / 2
+      std::vector<double> psd;       ///< signal unit^2 / Hz
+    };
+
+    /**
+     * Welch's PSD (P. D. Welch, IEEE Trans. Audio Electroacoust. 15, 1967):
+     * Hann-windowed segments of @p segment samples overlapping by half, mean
+     * removed per segment, periodograms averaged, one-sided and scaled so
+     * that the integral over frequency equals the signal's mean square (the
+     * same convention as scipy.signal.welch with scaling='density').
+     * @param x samples; @param rate sampling rate [Hz]
+     * @param segment samples per segment; 0: the largest power of two that
+     * gives at least 4 segments (at least 16 samples)
+     * @throws std::runtime_error if @p x has fewer than 16 samples
+     */
+    Spectrum
+    welch_psd(const std::vector<double> &x, double rate, unsigned int segment = 0);
+
+    /**
+     * The frequency [Hz] of the largest peak of the Hann-windowed,
+     * zero-padded (8x) periodogram of the whole of @p x above @p f_min,
+     * refined by a parabola through the log power of the three bins at the
+     * peak: resolution far below 1 / duration for a clean tone.
+     * @throws std::runtime_error if @p x has fewer than 16 samples
+     */
+    double
+    dominant_frequency(const std::vector<double> &x, double rate,
+                       double f_min = 0.);
+
+    /** The envelope of an oscillation and what it says. */
+    struct GrowthFit
+    {
+      std::vector<double> time;      ///< s, window centres
+      std::vector<double> envelope;  ///< max |x| per window
+      double growth_rate = 0.;       ///< 1/s, fitted on the growing part
+      double fit_start = 0., fit_end = 0.; ///< s, the fitted window
+      double final_amplitude = 0.;   ///< mean envelope over the last 20 %
+      bool   growing       = false;  ///< envelope grew by more than 10x
+      bool   limit_cycle   = false;  ///< last 20 % flat within 20 %
+    };
+
+    /**
+     * Splits @p x (sampled at @p rate from @p t0 [s]) into windows of
+     * @p period [s] (e.g. one period of the dominant frequency), takes the
+     * largest |x| in each as the envelope, and fits ln(envelope) by least
+     * squares against time from the envelope's smallest value (after the
+     * start) up to where it first reaches half of the final amplitude: the
+     * exponential growth rate before saturation. Without growth, the fit
+     * spans the whole record (a negative rate: decay).
+     * @throws std::runtime_error if fewer than 3 windows fit in @p x
+     */
+    GrowthFit
+    fit_growth(const std::vector<double> &x, double rate, double t0,
+               double period);
+  } // namespace transient
+} // namespace squeal
+
+#endif

@@ -1,0 +1,611 @@
+// The transient braking simulation of the TriboBrake (see braking.h): the
+// preload's structure and contact system, a lumped mass, the explicit
+// integrator, and the records a user reads: force and probe tables, the
+// contact history for the tribology module, the spectrum, the stability
+// verdict and ParaView series.
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <squeal/contact/preload.h>
+#include <squeal/geometry/tribobrake_mesh.h>
+#include <squeal/output/face_output.h>
+#include <squeal/output/output_directory.h>
+#include <squeal/transient/braking.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+namespace squeal
+{
+  namespace transient
+  {
+    using namespace dealii;
+    namespace fs = std::filesystem;
+
+    namespace
+    {
+      // Von Mises stress [Pa] of linear elasticity, material per cell.
+      class VonMises : public DataPostprocessorScalar<3>
+      {
+      public:
+        explicit VonMises(const parameters::AllParameters &prm)
+          : DataPostprocessorScalar<3>("von_mises_Pa", update_gradients)
+          , prm(prm)
+        {}
+        void
+        evaluate_vector_field(
+          const DataPostprocessorInputs::Vector<3> &in,
+          std::vector<Vector<double>> &out) const override
+        {
+          const auto cell = in.template get_cell<3>();
+          const auto &m   = prm.materials;
+          const parameters::Material &mat =
+            cell->material_id() == geometry::material::disc ? m.disc :
+            cell->material_id() == geometry::material::pad  ? m.pad :
+                                                              m.support;
+          const double E = mat.youngs_modulus, nu = mat.poisson_ratio;
+          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+          const double mu     = E / (2 * (1 + nu));
+          for (unsigned int q = 0; q < out.size(); ++q)
+            {
+              Tensor<2, 3> grad;
+              for (unsigned int c = 0; c < 3; ++c)
+                grad[c] = in.solution_gradients[q][c];
+              const Tensor<2, 3> eps = 0.5 * (grad + transpose(grad));
+              Tensor<2, 3>       s   = 2 * mu * eps;
+              for (unsigned int c = 0; c < 3; ++c)
+                s[c][c] += lambda * trace(eps);
+              const Tensor<2, 3> dev = s - trace(s) / 3. * unit_symmetric_tensor<3>();
+              out[q][0] = std::sqrt(1.5 * scalar_product(dev, dev));
+            }
+        }
+
+      private:
+        const parameters::AllParameters &prm;
+      };
+
+      // Force ramp: (1 - cos(pi t / T)) / 2 up to T, then 1.
+      double
+      ramp(const double t, const double T)
+      {
+        return T <= 0. || t >= T ? 1. :
+                                   0.5 * (1. - std::cos(numbers::PI * t / T));
+      }
+
+      std::string
+      fixed_width(const double x)
+      {
+        std::ostringstream s;
+        s << std::setprecision(10) << x;
+        return s.str();
+      }
+    } // namespace
+
+    BrakingAnalysis::BrakingAnalysis(const parameters::AllParameters &prm,
+                                     const ParameterHandler          &handler,
+                                     MPI_Comm                         comm)
+      : prm(prm)
+      , handler(handler)
+      , comm(comm)
+      , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+      , timer(pcout, TimerOutput::summary, TimerOutput::wall_times)
+      , model(prm, comm)
+    {}
+
+    void
+    BrakingAnalysis::setup_system()
+    {
+      TimerOutput::Scope t(timer, "setup");
+      if (Utilities::MPI::n_mpi_processes(comm) > 1)
+        throw std::runtime_error(
+          "the braking simulation is serial for now (the contact multipliers "
+          "are found on one process); run it without mpirun");
+      work_dir =
+        output::partial_directory(prm.output.directory, prm.output.overwrite);
+      output::fresh_directory(work_dir, "vtu");
+      {
+        std::ofstream out(fs::path(work_dir) / "parameters.prm");
+        handler.print_parameters(out, ParameterHandler::PRM);
+      }
+      model.setup_and_assemble(pcout);
+      for (const auto &line : model.constraints.get_lines())
+        if (!line.entries.empty())
+          throw std::runtime_error(
+            "the braking simulation needs a conforming mesh (the lumped mass "
+            "of hanging nodes is not condensed): set Mesh/Disc refinements "
+            "under pad = 0");
+      const Point<3> held =
+        contact::tribobrake_contact_system(model, pattern, stiffness,
+                                           constraints)
+          .second;
+      const unsigned int n = model.n_dofs();
+      fixed.assign(n, false);
+      for (unsigned int i = 0; i < n; ++i)
+        fixed[i] = constraints.is_constrained(i);
+
+      const double rho_support = prm.nominal_point().support_density;
+      mass = lumped_mass(model.dof_handler, model.mapping, [&](const auto &cell) {
+        return cell->material_id() == geometry::material::disc ?
+                 prm.materials.disc.density :
+               cell->material_id() == geometry::material::pad ?
+                 prm.materials.pad.density :
+                 rho_support;
+      });
+
+      mortar = contact::build_mortar_operators(model.dof_handler, model.mapping,
+                                               geometry::boundary::pad_contact,
+                                               geometry::boundary::disc_contact,
+                                               prm.preload.search_distance);
+      sliding = prm.interface.sliding_tangent();
+      radial  = Tensor<1, 3>({1., 0., 0.}); // the pad sits on the +x axis
+
+      // Stability limit and time step.
+      const auto &tr    = prm.transient;
+      const auto  limit = stable_time_step(stiffness, mass, fixed,
+                                          prm.damping.beta, tr.beta2);
+      ExplicitSettings s;
+      s.time_step = tr.time_step > 0. ? tr.time_step :
+                                        tr.safety_factor * limit.critical;
+      s.beta2                = tr.beta2;
+      s.alpha                = prm.damping.alpha;
+      s.beta                 = prm.damping.beta;
+      s.friction_coefficient = prm.interface.friction_coefficient;
+      s.pgs_tolerance        = tr.contact_tolerance;
+      s.pgs_max_iterations   = tr.contact_iterations;
+      if (tr.time_step > limit.critical)
+        throw std::runtime_error(
+          "Transient/Time step = " + fixed_width(tr.time_step) +
+          " s exceeds the stability limit " + fixed_width(limit.critical) +
+          " s of this mesh (largest frequency " +
+          fixed_width(limit.omega_max / (2 * numbers::PI)) +
+          " Hz with Rayleigh beta); set it at most to the limit, or 0 for " +
+          fixed_width(tr.safety_factor) + " x the limit");
+      dynamics = std::make_unique<ExplicitDynamics>(stiffness, mass, fixed, s,
+                                                    limit.critical);
+      const double omega =
+        prm.interface.rotation_sense == "counterclockwise" ?
+          tr.angular_velocity :
+          -tr.angular_velocity;
+      dynamics->set_contact(mortar, [omega](const Point<3> &x) {
+        return Tensor<1, 3>({-omega * x[1], omega * x[0], 0.});
+      });
+      result.n_dofs             = n;
+      result.time_step          = s.time_step;
+      result.critical_time_step = limit.critical;
+
+      // The probe: the pad's leading-edge node (smallest coordinate along
+      // the sliding direction: where the disc enters the contact) nearest
+      // the pad's mid radius; the leading-edge row for the pressure range.
+      double s_min = 1e300;
+      for (unsigned int j = 0; j < mortar.n_slave(); ++j)
+        s_min = std::min(s_min, mortar.slave_points[j] * sliding);
+      const double h = prm.geometry.pad_size * 1e-6;
+      unsigned int best = 0;
+      double       best_r = 1e300;
+      for (unsigned int j = 0; j < mortar.n_slave(); ++j)
+        if (mortar.slave_points[j] * sliding < s_min + h)
+          {
+            leading_nodes.push_back(j);
+            const double dr =
+              std::abs(mortar.slave_points[j] * radial - prm.geometry.pad_radius);
+            if (dr < best_r)
+              {
+                best_r = dr;
+                best   = j;
+              }
+          }
+      probe_point = mortar.slave_points[best];
+      probe_dofs  = mortar.slave_dofs[best];
+
+      history.coordinates.clear();
+      for (const auto &x : mortar.slave_points)
+        history.coordinates.push_back({{x[0], x[1], x[2]}});
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          history.sliding_direction[c] = sliding[c];
+          history.radial_direction[c]  = radial[c];
+        }
+      const unsigned int n_s = mortar.n_slave();
+      history.p_N.assign(n_s, {});
+      history.t_T1.assign(n_s, {});
+      history.t_T2.assign(n_s, {});
+      history.slip_velocity.assign(n_s, {});
+      history.status.assign(n_s, {});
+
+      pcout << "Braking: " << n << " DoFs, " << mortar.n_slave()
+            << " pad-face nodes; radial displacement held at (" << held[0]
+            << ", " << held[1] << ", " << held[2] << ") m\n"
+            << "Stability limit " << limit.critical << " s (largest frequency "
+            << limit.omega_max / (2 * numbers::PI) << " Hz, "
+            << limit.lanczos_steps << " Lanczos steps); time step "
+            << s.time_step << " s, beta2 = " << tr.beta2 << "\nProbe: pad "
+            << "leading edge at (" << probe_point[0] << ", " << probe_point[1]
+            << ", " << probe_point[2] << ") m" << std::endl;
+    }
+
+    void
+    BrakingAnalysis::assemble_load()
+    {
+      TimerOutput::Scope t(timer, "setup");
+      load = contact::support_top_load(model, constraints,
+                                       prm.transient.normal_force);
+    }
+
+    void
+    BrakingAnalysis::record_sample()
+    {
+      const ExplicitDynamics &d = *dynamics;
+      const ContactStep      &c = d.contact_state();
+      std::array<double, 17>  row;
+      row[0] = d.time();
+      row[1] = c.normal_force;
+      row[2] = c.force * sliding;
+      row[3] = c.force * radial;
+      row[4] = c.contact_area;
+      row[5] = c.n_stick;
+      row[6] = c.n_slip;
+      row[7] = c.n_separated;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          row[8 + k]  = d.displacement()[probe_dofs[k]];
+          row[11 + k] = d.velocity()[probe_dofs[k]];
+          row[14 + k] = d.acceleration()[probe_dofs[k]];
+        }
+      samples.push_back(row);
+      if (d.time() + 1e-15 >= prm.transient.history_start)
+        {
+          history.time.push_back(d.time());
+          for (unsigned int j = 0; j < mortar.n_slave(); ++j)
+            {
+              history.p_N[j].push_back(std::max(0., c.pressure[j]));
+              history.t_T1[j].push_back(c.traction[j] * sliding);
+              history.t_T2[j].push_back(c.traction[j] * radial);
+              history.slip_velocity[j].push_back(c.slip_velocity[j]);
+              history.status[j].push_back(c.status[j]);
+            }
+        }
+    }
+
+    void
+    BrakingAnalysis::write_snapshot(const std::string &series,
+                                    const unsigned int index)
+    {
+      const ExplicitDynamics &d    = *dynamics;
+      const std::string       name = series + "_" +
+                               Utilities::int_to_string(index, 4) + ".vtu";
+      const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+        vec(3, DataComponentInterpretation::component_is_part_of_vector);
+      {
+        DataOut<3> out;
+        out.attach_dof_handler(model.dof_handler);
+        out.add_data_vector(d.displacement(),
+                            std::vector<std::string>(3, "displacement_m"),
+                            DataOut<3>::type_dof_data, vec);
+        out.add_data_vector(d.velocity(),
+                            std::vector<std::string>(3, "velocity_m_per_s"),
+                            DataOut<3>::type_dof_data, vec);
+        const VonMises von_mises(prm);
+        out.add_data_vector(d.displacement(), von_mises);
+        out.build_patches(model.mapping, 1);
+        std::ofstream f(fs::path(work_dir) / "vtu" / name);
+        out.write_vtu(f);
+      }
+      (series == "transient" ? snapshots : frames)
+        .emplace_back(d.time(), "vtu/" + name);
+      if (series != "transient")
+        return;
+      // The pad face's contact fields.
+      const ContactStep &c = d.contact_state();
+      Vector<double>     tractions(model.n_dofs()), state(model.n_dofs());
+      for (unsigned int j = 0; j < mortar.n_slave(); ++j)
+        {
+          const auto &dofs   = mortar.slave_dofs[j];
+          tractions[dofs[0]] = std::max(0., c.pressure[j]);
+          tractions[dofs[1]] = c.traction[j] * sliding;
+          tractions[dofs[2]] = c.traction[j] * radial;
+          state[dofs[0]]     = c.status[j];
+          state[dofs[1]]     = c.slip_velocity[j];
+        }
+      output::BoundaryFaceOutput face(geometry::boundary::pad_contact);
+      face.attach_dof_handler(model.dof_handler);
+      face.add_data_vector(tractions,
+                           std::vector<std::string>{"contact_pressure_Pa",
+                                                    "traction_sliding_Pa",
+                                                    "traction_radial_Pa"});
+      face.add_data_vector(state, std::vector<std::string>{"status",
+                                                           "slip_velocity_m_per_s",
+                                                           "unused"});
+      face.build_patches(model.mapping, 1);
+      const std::string face_name = "contact_" + name;
+      std::ofstream     f(fs::path(work_dir) / "vtu" / face_name);
+      face.write_vtu(f);
+      faces.emplace_back(d.time(), "vtu/" + face_name);
+    }
+
+    void
+    BrakingAnalysis::solve()
+    {
+      const auto        &tr = prm.transient;
+      ExplicitDynamics  &d  = *dynamics;
+      const double       dt = result.time_step;
+      const unsigned int n_steps =
+        static_cast<unsigned int>(std::ceil(tr.end_time / dt - 1e-9)) + 1;
+      const unsigned int every = std::max(1., std::round(1. / (tr.sampling_rate * dt)));
+      history.sampling_rate    = 1. / (every * dt);
+      const unsigned int snap_every =
+        tr.snapshot_interval > 0. ?
+          std::max(1., std::round(tr.snapshot_interval / dt)) :
+          0;
+      const double anim_start =
+        tr.animation_start >= 0. ? tr.animation_start :
+                                   tr.end_time - tr.animation_period;
+      const unsigned int anim_every =
+        tr.animation_frames > 0 ?
+          std::max(1., std::round(tr.animation_period / tr.animation_frames / dt)) :
+          0;
+
+      Vector<double> u0(model.n_dofs()), v0(model.n_dofs());
+      if (tr.initial_perturbation > 0.)
+        {
+          // the seed: axial velocity in the shape of a (0,3) disc mode
+          std::map<types::global_dof_index, Point<3>> points;
+          DoFTools::map_dofs_to_support_points(model.mapping, model.dof_handler,
+                                               points);
+          const IndexSet z_dofs =
+            DoFTools::extract_dofs(model.dof_handler,
+                                   ComponentMask({false, false, true}));
+          const double r_i = prm.geometry.disc_inner_radius,
+                       r_o = prm.geometry.disc_outer_radius;
+          for (const auto i : z_dofs)
+            {
+              const Point<3> &x = points[i];
+              const double    r = std::hypot(x[0], x[1]);
+              if (x[2] <= 0. && !fixed[i])
+                v0[i] = tr.initial_perturbation *
+                        std::cos(3. * std::atan2(x[1], x[0])) * (r - r_i) /
+                        (r_o - r_i);
+            }
+        }
+      d.initialise(u0, v0);
+
+      pcout << "Time loop: " << n_steps << " steps to " << tr.end_time
+            << " s; samples every " << every << " steps ("
+            << history.sampling_rate << " Hz)" << std::endl;
+      Vector<double> f(model.n_dofs());
+      const auto     start = std::chrono::steady_clock::now();
+      auto           last_report = start;
+      unsigned int   n_snap = 0, n_frame = 0;
+      for (unsigned int k = 0; k < n_steps; ++k)
+        {
+          {
+            TimerOutput::Scope ts(timer, "time steps");
+            f = load;
+            f *= ramp(k * dt, tr.ramp_duration);
+            d.step(f);
+          }
+          if (k % every == 0)
+            record_sample();
+          {
+            TimerOutput::Scope ts(timer, "snapshots");
+            if (snap_every > 0 && k % snap_every == 0)
+              write_snapshot("transient", n_snap++);
+            if (anim_every > 0 && d.time() >= anim_start - 1e-15 &&
+                k % anim_every == 0 && n_frame < tr.animation_frames)
+              write_snapshot("animation", n_frame++);
+          }
+          const auto now = std::chrono::steady_clock::now();
+          if (std::chrono::duration<double>(now - last_report).count() > 10. ||
+              k + 1 == n_steps)
+            {
+              last_report = now;
+              const double wall =
+                std::chrono::duration<double>(now - start).count();
+              const double rate = (k + 1) / wall;
+              pcout << "  t = " << std::setw(10) << d.time() * 1e3 << " ms ("
+                    << std::setw(3) << int(100. * (k + 1) / n_steps) << " %), "
+                    << int(rate) << " steps/s, " << int((n_steps - k - 1) / rate)
+                    << " s left; F_N = " << d.contact_state().normal_force
+                    << " N, F_T = " << d.contact_state().force * sliding
+                    << " N, stick/slip/separated "
+                    << d.contact_state().n_stick << "/"
+                    << d.contact_state().n_slip << "/"
+                    << d.contact_state().n_separated << std::endl;
+            }
+        }
+      result.n_steps   = n_steps;
+      result.wall_time = std::chrono::duration<double>(
+                           std::chrono::steady_clock::now() - start)
+                           .count();
+    }
+
+    void
+    BrakingAnalysis::output_results()
+    {
+      TimerOutput::Scope t(timer, "output");
+      const auto    &tr  = prm.transient;
+      const fs::path dir(work_dir);
+      const double   rate = history.sampling_rate;
+
+      // Analysis window: Spectrum start (default: the second half).
+      const double t_spec =
+        tr.spectrum_start >= 0. ? tr.spectrum_start : tr.end_time / 2.;
+      std::vector<double> acc, acc_after_ramp;
+      double              t_after_ramp = -1.;
+      for (const auto &row : samples)
+        {
+          const double a_t = row[14] * sliding[0] + row[15] * sliding[1] +
+                             row[16] * sliding[2];
+          if (row[0] >= t_spec)
+            acc.push_back(a_t);
+          if (row[0] >= tr.ramp_duration)
+            {
+              if (t_after_ramp < 0.)
+                t_after_ramp = row[0];
+              acc_after_ramp.push_back(a_t);
+            }
+        }
+      Spectrum spectrum;
+      if (acc.size() >= 16)
+        {
+          spectrum                  = welch_psd(acc, rate);
+          result.dominant_frequency = dominant_frequency(acc, rate, 100.);
+        }
+      if (result.dominant_frequency > 0. && acc_after_ramp.size() > 0)
+        {
+          try
+            {
+              result.growth = fit_growth(acc_after_ramp, rate, t_after_ramp,
+                                         1. / result.dominant_frequency);
+            }
+          catch (const std::exception &)
+            {
+              // too short after the ramp: no verdict on growth
+            }
+        }
+      // Separation after the ramp and the leading-edge pressure range.
+      const double p_mean = tr.normal_force / mortar.slave_area;
+      double       p_lo = 1e300, p_hi = 0.;
+      for (unsigned int i = 0; i < history.time.size(); ++i)
+        {
+          if (history.time[i] < tr.ramp_duration)
+            continue;
+          for (unsigned int j = 0; j < mortar.n_slave(); ++j)
+            if (history.status[j][i] == 0)
+              result.separated = true;
+          if (history.time[i] >= t_spec)
+            for (const unsigned int j : leading_nodes)
+              {
+                p_lo = std::min(p_lo, history.p_N[j][i]);
+                p_hi = std::max(p_hi, history.p_N[j][i]);
+              }
+        }
+      if (p_hi > 0.)
+        {
+          result.leading_min_over_mean = p_lo / p_mean;
+          result.leading_max_over_mean = p_hi / p_mean;
+        }
+      const GrowthFit &g = result.growth;
+      result.verdict =
+        g.growing ? (g.limit_cycle ? "unstable: limit cycle" :
+                                     "unstable: still growing at End time") :
+                    (g.growth_rate < 0. ? "stable: vibration decays" :
+                                          "stable: no growth");
+
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      {
+        std::ofstream out(dir / "forces.csv");
+        out << "time_s,normal_force_N,tangential_force_N,radial_force_N,"
+               "contact_area_m2,n_stick,n_slip,n_separated\n"
+            << std::setprecision(10);
+        for (const auto &r : samples)
+          out << r[0] << ',' << r[1] << ',' << r[2] << ',' << r[3] << ','
+              << r[4] << ',' << r[5] << ',' << r[6] << ',' << r[7] << '\n';
+      }
+      {
+        std::ofstream out(dir / "probes.csv");
+        out << "# probe: pad leading edge at (" << probe_point[0] << ", "
+            << probe_point[1] << ", " << probe_point[2]
+            << ") m; sliding direction (" << sliding[0] << ", " << sliding[1]
+            << ", " << sliding[2] << ")\n"
+            << "time_s,u_x_m,u_y_m,u_z_m,v_x_m_per_s,v_y_m_per_s,v_z_m_per_s,"
+               "a_x_m_per_s2,a_y_m_per_s2,a_z_m_per_s2\n"
+            << std::setprecision(10);
+        for (const auto &r : samples)
+          {
+            out << r[0];
+            for (unsigned int k = 8; k < 17; ++k)
+              out << ',' << r[k];
+            out << '\n';
+          }
+      }
+      {
+        std::ofstream out(dir / "spectrum.csv");
+        out << "# Welch PSD of the probe's acceleration along the sliding "
+               "direction, t >= "
+            << t_spec << " s\nfrequency_Hz,psd_m2_per_s4_per_Hz\n"
+            << std::setprecision(10);
+        for (unsigned int k = 0; k < spectrum.psd.size(); ++k)
+          out << spectrum.frequency[k] << ',' << spectrum.psd[k] << '\n';
+      }
+      {
+        std::ofstream out(dir / "envelope.csv");
+        out << "time_s,envelope_m_per_s2\n" << std::setprecision(10);
+        for (unsigned int k = 0; k < g.time.size(); ++k)
+          out << g.time[k] << ',' << g.envelope[k] << '\n';
+      }
+      tribology::write_contact_history((dir / "contact_history.h5").string(),
+                                       history);
+      {
+        std::ofstream out(dir / "summary.csv");
+        out << "quantity,value\n"
+            << std::setprecision(10) << "verdict," << result.verdict
+            << "\ndominant_frequency_Hz," << result.dominant_frequency
+            << "\ngrowth_rate_per_s," << g.growth_rate
+            << "\ngrowth_fit_start_s," << g.fit_start
+            << "\ngrowth_fit_end_s," << g.fit_end
+            << "\nlimit_cycle_amplitude_m_per_s2," << g.final_amplitude
+            << "\nlimit_cycle," << (g.limit_cycle ? 1 : 0)
+            << "\nseparated," << (result.separated ? 1 : 0)
+            << "\nleading_edge_p_min_over_mean," << result.leading_min_over_mean
+            << "\nleading_edge_p_max_over_mean," << result.leading_max_over_mean
+            << "\nn_dofs," << result.n_dofs << "\ntime_step_s,"
+            << result.time_step << "\ncritical_time_step_s,"
+            << result.critical_time_step << "\nn_steps," << result.n_steps
+            << "\nwall_time_s," << result.wall_time << "\nsteps_per_s,"
+            << result.n_steps / result.wall_time << "\n";
+      }
+      for (const auto &[file, list] :
+           {std::make_pair("transient.pvd", &snapshots),
+            std::make_pair("animation.pvd", &frames),
+            std::make_pair("contact.pvd", &faces)})
+        {
+          std::ofstream pvd(dir / file);
+          DataOutBase::write_pvd_record(pvd, *list);
+        }
+
+      pcout << "Verdict: " << result.verdict << "\n  dominant frequency "
+            << result.dominant_frequency << " Hz";
+      for (unsigned int h = 2; h <= 3 && !spectrum.psd.empty(); ++h)
+        {
+          const double f_h = h * result.dominant_frequency;
+          unsigned int k   = 0;
+          while (k + 1 < spectrum.frequency.size() &&
+                 spectrum.frequency[k] < f_h)
+            ++k;
+          if (k + 1 < spectrum.frequency.size())
+            pcout << "; harmonic " << h << " (" << f_h << " Hz) PSD "
+                  << spectrum.psd[k];
+        }
+      pcout << "\n  growth rate " << g.growth_rate << " 1/s (fitted "
+            << g.fit_start * 1e3 << "-" << g.fit_end * 1e3
+            << " ms), final amplitude " << g.final_amplitude
+            << " m/s^2 (probe acceleration along the sliding direction)"
+            << "\n  pad separated after the ramp: "
+            << (result.separated ? "yes" : "no")
+            << "; leading-edge pressure " << result.leading_min_over_mean
+            << " to " << result.leading_max_over_mean
+            << " x the mean\n  " << result.n_steps << " steps in "
+            << result.wall_time << " s (" << result.n_steps / result.wall_time
+            << " steps/s, " << result.wall_time / (tr.end_time * 1e3)
+            << " s per simulated ms)" << std::endl;
+    }
+
+    void
+    BrakingAnalysis::run()
+    {
+      setup_system();
+      assemble_load();
+      solve();
+      output_results();
+      output::publish_directory(work_dir, prm.output.directory);
+      pcout << "Results in " << prm.output.directory << std::endl;
+    }
+  } // namespace transient
+} // namespace squeal

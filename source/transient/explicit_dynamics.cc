@@ -1,0 +1,416 @@
+// Explicit dynamics with forward-increment Lagrange multiplier contact (see
+// explicit_dynamics.h). The step costs one sparse product with K and a
+// projected Gauss-Seidel sweep over the interface nodes; the lumped mass
+// keeps every local contact problem a scalar one.
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/precondition.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+
+#include <squeal/transient/explicit_dynamics.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace transient
+  {
+    using namespace dealii;
+
+    Vector<double>
+    lumped_mass(const DoFHandler<3> &dof_handler,
+                const Mapping<3>    &mapping,
+                const std::function<double(
+                  const DoFHandler<3>::active_cell_iterator &)> &density)
+    {
+      const auto &fe = dof_handler.get_fe();
+      // Gauss-Lobatto points coincide with the nodes of FE_Q (equidistant
+      // for degree <= 2, Gauss-Lobatto beyond): the rule makes the mass
+      // diagonal with positive weights.
+      const QGaussLobatto<3> quadrature(fe.degree + 1);
+      FEValues<3>            fe_values(mapping, fe, quadrature,
+                            update_values | update_JxW_values);
+      Vector<double>         m(dof_handler.n_dofs());
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          const double rho = density(cell);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            {
+              double mi = 0.;
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                mi += fe_values.shape_value(i, q) * fe_values.shape_value(i, q) *
+                      fe_values.JxW(q);
+              m[dofs[i]] += rho * mi;
+            }
+        }
+      return m;
+    }
+
+    namespace
+    {
+      // M^-1/2 K M^-1/2 on the free DoFs (zero rows and columns elsewhere).
+      struct ScaledStiffness
+      {
+        const SparseMatrix<double> &K;
+        Vector<double>              scale; // 1/sqrt(m), 0 on fixed DoFs
+        mutable Vector<double>      tmp;
+        void
+        vmult(Vector<double> &dst, const Vector<double> &src) const
+        {
+          tmp = src;
+          tmp.scale(scale);
+          K.vmult(dst, tmp);
+          dst.scale(scale);
+        }
+      };
+    } // namespace
+
+    StableTimeStep
+    stable_time_step(const SparseMatrix<double> &K,
+                     const Vector<double>       &mass,
+                     const std::vector<bool>    &fixed,
+                     const double                beta,
+                     const double                beta2,
+                     const unsigned int          lanczos_steps)
+    {
+      const unsigned int n = K.m();
+      ScaledStiffness    A{K, Vector<double>(n), Vector<double>(n)};
+      Vector<double>     b(n), x(n);
+      std::mt19937       random(12345); // deterministic start vector
+      std::uniform_real_distribution<double> uniform(-1., 1.);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          A.scale[i] = fixed[i] ? 0. : 1. / std::sqrt(mass[i]);
+          b[i]       = fixed[i] ? 0. : uniform(random);
+        }
+      // The Ritz values of CG's Lanczos process approach the top of the
+      // spectrum from below; a few dozen steps resolve it to well under the
+      // safety factor a run applies (see benchmarks/transient).
+      double           lambda_max = 0.;
+      IterationNumberControl control(lanczos_steps, 0.);
+      SolverCG<Vector<double>> cg(control);
+      cg.connect_eigenvalues_slot(
+        [&](const std::vector<double> &ev) {
+          if (!ev.empty())
+            lambda_max = std::max(lambda_max, ev.back());
+        },
+        true);
+      cg.solve(A, x, b, PreconditionIdentity());
+      StableTimeStep s;
+      s.lanczos_steps = control.last_step();
+      s.omega_max     = std::sqrt(lambda_max);
+      const double z  = beta * s.omega_max / 2.;
+      s.critical = std::sqrt(2. / beta2) / s.omega_max *
+                   (std::sqrt(1. + z * z) - z);
+      return s;
+    }
+
+    ExplicitDynamics::ExplicitDynamics(const SparseMatrix<double> &K,
+                                       const Vector<double>       &mass,
+                                       const std::vector<bool>    &fixed,
+                                       const ExplicitSettings     &settings,
+                                       const double                dt_critical)
+      : K(K)
+      , mass(mass)
+      , fixed(fixed)
+      , settings(settings)
+    {
+      std::ostringstream msg;
+      if (!(settings.beta2 >= 0.5 && settings.beta2 <= 1.))
+        msg << "beta2 = " << settings.beta2 << " is outside [0.5, 1]";
+      else if (!(settings.time_step > 0.))
+        msg << "the time step must be positive (got " << settings.time_step
+            << " s)";
+      else if (settings.time_step > dt_critical)
+        msg << "the time step " << settings.time_step
+            << " s exceeds the stability limit " << dt_critical
+            << " s of the explicit scheme (largest frequency of the mesh "
+               "and damping); choose at most that";
+      if (!msg.str().empty())
+        throw std::runtime_error(msg.str());
+      for (auto *vec : {&u, &v, &a, &v_pred, &u_next, &work})
+        vec->reinit(K.m());
+    }
+
+    void
+    ExplicitDynamics::set_contact(
+      const contact::MortarOperators &m,
+      const std::function<Tensor<1, 3>(const Point<3> &)> &master_velocity)
+    {
+      mortar                 = &m;
+      const unsigned int n_s = m.n_slave();
+      rows.assign(n_s, {});
+      delassus.assign(n_s, 0.);
+      master_slide.assign(n_s, Tensor<1, 3>());
+      multiplier.assign(n_s, Tensor<1, 3>());
+      const auto inverse_mass = [&](const contact::NodeDofs &d) {
+        return fixed[d[0]] ? 0. : 1. / mass[d[0]];
+      };
+      for (unsigned int j = 0; j < n_s; ++j)
+        {
+          if (!(m.D[j] > 0.))
+            continue;
+          rows[j].emplace_back(m.slave_dofs[j], -m.D[j]);
+          for (const auto &[l, w] : m.M[j])
+            {
+              rows[j].emplace_back(m.master_dofs[l], w);
+              if (master_velocity)
+                master_slide[j] += w * master_velocity(m.master_points[l]);
+            }
+          for (const auto &[d, w] : rows[j])
+            delassus[j] += w * w * inverse_mass(d);
+        }
+      contact.pressure.reinit(n_s);
+      contact.slip_velocity.reinit(n_s);
+      contact.traction.assign(n_s, Tensor<1, 3>());
+      contact.status.assign(n_s, 0);
+    }
+
+    void
+    ExplicitDynamics::initialise(const Vector<double> &u0,
+                                 const Vector<double> &v0)
+    {
+      u       = u0;
+      v       = v0;
+      v_pred  = v0;
+      a       = 0.;
+      n_step  = 0;
+      pending = false;
+      for (auto &l : multiplier)
+        l = Tensor<1, 3>();
+    }
+
+    void
+    ExplicitDynamics::step(const Vector<double> &f)
+    {
+      const double dt = settings.time_step;
+      if (pending)
+        {
+          u.swap(u_next);
+          v_pred.add(dt, a); // v~_{n+1} = v~_n + dt a_n
+          ++n_step;
+        }
+      // a*_n = M^-1 (f_n - K (u_n + beta v~_n) - alpha M v~_n)
+      work = u;
+      work.add(settings.beta, v_pred);
+      K.vmult(a, work);
+      const unsigned int n = u.size();
+      const double       c = dt * dt * (settings.beta2 + 0.5);
+      for (unsigned int i = 0; i < n; ++i)
+        if (fixed[i])
+          {
+            a[i]      = 0.;
+            u_next[i] = u[i];
+          }
+        else
+          {
+            a[i] = (f[i] - a[i]) / mass[i] - settings.alpha * v_pred[i];
+            // u_{n+1} = u_n + dt v_n + dt^2/2 a_n with v_n = v~_n + dt beta2 a_n
+            u_next[i] = u[i] + dt * v_pred[i] + c * a[i];
+          }
+      if (mortar)
+        solve_contact();
+      // v_n = v~_n + dt beta2 a_n
+      v = v_pred;
+      v.add(dt * settings.beta2, a);
+      pending = true;
+      if (!std::isfinite(u_next.l2_norm()))
+        {
+          std::ostringstream msg;
+          msg << "the explicit solution is not finite at t = " << time()
+              << " s (step " << n_step << "): the time step " << dt
+              << " s is too large for this model";
+          throw std::runtime_error(msg.str());
+        }
+    }
+
+    void
+    ExplicitDynamics::solve_contact()
+    {
+      const double       dt  = settings.time_step;
+      const double       c   = dt * dt * (settings.beta2 + 0.5);
+      const double       mu  = settings.friction_coefficient;
+      const unsigned int n_s = rows.size();
+      const auto inverse_mass = [&](const contact::NodeDofs &d) {
+        return fixed[d[0]] ? 0. : 1. / mass[d[0]];
+      };
+      // R_j(x) = sum_k w_k x_k: weighted motion of the master against the
+      // slave node j [m^3 or m^3/s].
+      const auto relative = [&](const unsigned int j, const Vector<double> &x) {
+        Tensor<1, 3> r;
+        for (const auto &[d, w] : rows[j])
+          for (unsigned int k = 0; k < 3; ++k)
+            r[k] += w * x[d[k]];
+        return r;
+      };
+      std::vector<Tensor<1, 3>> start(n_s);
+      for (unsigned int j = 0; j < n_s; ++j)
+        if (!rows[j].empty())
+          start[j] = relative(j, u);
+
+      // Warm start: the multipliers of the previous step, applied.
+      const auto apply = [&](const unsigned int j, const Tensor<1, 3> &dP) {
+        for (const auto &[d, w] : rows[j])
+          {
+            const double s = c * w * inverse_mass(d);
+            for (unsigned int k = 0; k < 3; ++k)
+              u_next[d[k]] += s * dP[k];
+          }
+      };
+      for (unsigned int j = 0; j < n_s; ++j)
+        if (!rows[j].empty())
+          apply(j, multiplier[j]);
+
+      unsigned int it     = 0;
+      double       change = 0.;
+      for (; it < settings.pgs_max_iterations; ++it)
+        {
+          double max_change = 0., max_value = 0.;
+          for (unsigned int j = 0; j < n_s; ++j)
+            {
+              if (rows[j].empty() || !(delassus[j] > 0.))
+                continue;
+              const Tensor<1, 3> &nj = mortar->normals[j];
+              const Tensor<1, 3>  R  = relative(j, u_next);
+              const double        g  = mortar->gap0[j] + nj * R;
+              // slip of the slave against the master over the step
+              Tensor<1, 3> s = -(R - start[j]) - dt * master_slide[j];
+              s -= (s * nj) * nj;
+              const double cw = c * delassus[j];
+              const double z  = multiplier[j] * nj;
+              Tensor<1, 3> lambda = multiplier[j] - z * nj;
+              const double z_new  = std::max(0., z - g / cw);
+              Tensor<1, 3> l_new  = lambda + s / cw;
+              const double norm   = l_new.norm();
+              if (norm > mu * z_new)
+                l_new *= (norm > 0. ? mu * z_new / norm : 0.);
+              const Tensor<1, 3> P  = z_new * nj + l_new;
+              const Tensor<1, 3> dP = P - multiplier[j];
+              apply(j, dP);
+              multiplier[j] = P;
+              max_change    = std::max(max_change, dP.norm());
+              max_value     = std::max(max_value, P.norm());
+            }
+          change = max_value > 0. ? max_change / max_value : 0.;
+          if (change <= settings.pgs_tolerance)
+            break;
+        }
+      if (it == settings.pgs_max_iterations)
+        {
+          std::ostringstream msg;
+          msg << "the contact multipliers (projected Gauss-Seidel) did not "
+                 "converge at t = "
+              << time() << " s: relative change " << change << " after " << it
+              << " iterations (tolerance " << settings.pgs_tolerance
+              << "); raise Transient/Contact iterations or reduce the time step";
+          throw std::runtime_error(msg.str());
+        }
+
+      // a_n = a*_n + M^-1 G^T Lambda_n, and the contact report.
+      ContactStep &out = contact;
+      out.force        = Tensor<1, 3>();
+      out.normal_force = out.contact_area = 0.;
+      out.n_stick = out.n_slip = out.n_separated = 0;
+      out.pgs_iterations = it + 1;
+      out.pgs_change     = change;
+      for (unsigned int j = 0; j < n_s; ++j)
+        {
+          if (rows[j].empty())
+            {
+              out.status[j] = 0;
+              ++out.n_separated;
+              continue;
+            }
+          for (const auto &[d, w] : rows[j])
+            {
+              const double s = w * inverse_mass(d);
+              for (unsigned int k = 0; k < 3; ++k)
+                a[d[k]] += s * multiplier[j][k];
+            }
+          const Tensor<1, 3> &nj = mortar->normals[j];
+          const double        z  = multiplier[j] * nj;
+          const Tensor<1, 3>  lambda = multiplier[j] - z * nj;
+          const double        D      = mortar->D[j];
+          out.pressure[j]            = z;
+          out.traction[j]            = -lambda; // on the slave
+          out.force += -D * multiplier[j];
+          out.normal_force += D * z;
+          Tensor<1, 3> s = -(relative(j, u_next) - start[j]) - dt * master_slide[j];
+          s -= (s * nj) * nj;
+          out.slip_velocity[j] = s.norm() / (D * dt);
+          if (!(z > 0.))
+            {
+              out.status[j] = 0;
+              ++out.n_separated;
+            }
+          else
+            {
+              out.contact_area += D;
+              const bool slip = lambda.norm() >= mu * z * (1. - 1e-9);
+              out.status[j]   = slip ? 2 : 1;
+              ++(slip ? out.n_slip : out.n_stick);
+            }
+        }
+    }
+
+    double
+    ExplicitDynamics::kinetic_energy() const
+    {
+      double e = 0.;
+      for (unsigned int i = 0; i < v.size(); ++i)
+        e += mass[i] * v[i] * v[i];
+      return e / 2.;
+    }
+
+    double
+    ExplicitDynamics::strain_energy() const
+    {
+      return K.matrix_norm_square(u) / 2.;
+    }
+
+    std::vector<double>
+    ExplicitDynamics::save_state() const
+    {
+      std::vector<double> s;
+      s.reserve(2 + 5 * u.size() + 3 * multiplier.size());
+      s.push_back(n_step);
+      s.push_back(pending ? 1. : 0.);
+      for (const auto *vec : {&u, &v, &a, &v_pred, &u_next})
+        s.insert(s.end(), vec->begin(), vec->end());
+      for (const auto &l : multiplier)
+        for (unsigned int k = 0; k < 3; ++k)
+          s.push_back(l[k]);
+      return s;
+    }
+
+    void
+    ExplicitDynamics::load_state(const std::vector<double> &s)
+    {
+      const std::size_t n = u.size();
+      if (s.size() != 2 + 5 * n + 3 * multiplier.size())
+        throw std::runtime_error(
+          "the checkpoint does not match this model (different mesh, degree "
+          "or contact interface)");
+      n_step  = static_cast<unsigned int>(s[0]);
+      pending = s[1] != 0.;
+      auto it = s.begin() + 2;
+      for (auto *vec : {&u, &v, &a, &v_pred, &u_next})
+        {
+          std::copy(it, it + n, vec->begin());
+          it += n;
+        }
+      for (auto &l : multiplier)
+        for (unsigned int k = 0; k < 3; ++k)
+          l[k] = *it++;
+    }
+  } // namespace transient
+} // namespace squeal
