@@ -39,16 +39,8 @@ namespace squeal
       const physics::MatrixParts parts = model.parts();
       physics::PETScMatrix       K;
       parts.combine(parts.coefficients(prm.nominal_point()).structural, K);
-      const unsigned int     n = model.n_dofs();
-      DynamicSparsityPattern dsp(n, n);
-      for (unsigned int i = 0; i < n; ++i)
-        for (auto e = K.begin(i); e != K.end(i); ++e)
-          dsp.add(i, e->column());
-      pattern.copy_from(dsp);
-      stiffness.reinit(pattern);
-      for (unsigned int i = 0; i < n; ++i)
-        for (auto e = K.begin(i); e != K.end(i); ++e)
-          stiffness.set(i, e->column(), e->value());
+      physics::copy_to_serial(K, pattern, stiffness);
+      const unsigned int n = model.n_dofs();
 
       constraints.copy_from(model.constraints);
       // Hold the radial displacement of the support top's centre node: a

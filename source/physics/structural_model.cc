@@ -46,6 +46,23 @@ namespace squeal
     }
 
     void
+    copy_to_serial(const PETScMatrix    &K,
+                   SparsityPattern      &pattern,
+                   SparseMatrix<double> &target)
+    {
+      const unsigned int     n = K.m();
+      DynamicSparsityPattern dsp(n, n);
+      for (unsigned int i = 0; i < n; ++i)
+        for (auto e = K.begin(i); e != K.end(i); ++e)
+          dsp.add(i, e->column());
+      pattern.copy_from(dsp);
+      target.reinit(pattern);
+      for (unsigned int i = 0; i < n; ++i)
+        for (auto e = K.begin(i); e != K.end(i); ++e)
+          target.set(i, e->column(), e->value());
+    }
+
+    void
     StructuralModel::setup_and_assemble(ConditionalOStream &pcout)
     {
       const bool brake = prm.scene.bodies == "tribobrake";

@@ -22,6 +22,8 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
 
 #include <squeal/parameters/parameters.h>
 
@@ -197,6 +199,16 @@ namespace squeal
       void
       add_springs(dealii::ConditionalOStream &pcout);
     };
+
+    /**
+     * Copies a (serial, one-process) PETSc matrix into a deal.II sparse
+     * matrix with the same pattern (built into @p pattern), for the serial
+     * direct and explicit solvers.
+     */
+    void
+    copy_to_serial(const PETScMatrix            &source,
+                   dealii::SparsityPattern      &pattern,
+                   dealii::SparseMatrix<double> &target);
 
     /**
      * Sets the diagonal entry of every locally owned constrained row of
