@@ -197,6 +197,13 @@ namespace squeal
                         "the shape of a (0,3) mode (cos 3 theta, rising with "
                         "the radius), a seed for an instability; 0: none "
                         "(the load ramp and rounding seed it).");
+      prm.declare_entry("Stiffness product", stiffness_product,
+                        Patterns::Selection("matrix-free|sparse"),
+                        "How K u is computed each step: matrix-free (deal.II "
+                        "MatrixFree, sum factorisation, vectorised and "
+                        "multithreaded) or sparse (the assembled matrix). "
+                        "Both are timed at set-up and printed; see "
+                        "benchmarks/transient/README.md.");
       prm.leave_subsection();
     }
 
@@ -221,6 +228,7 @@ namespace squeal
       contact_tolerance    = prm.get_double("Contact tolerance");
       contact_iterations   = prm.get_integer("Contact iterations");
       initial_perturbation = prm.get_double("Initial perturbation");
+      stiffness_product    = prm.get("Stiffness product");
       prm.leave_subsection();
       check(history_start < end_time,
             "Transient/History start must be below Transient/End time");

@@ -4,6 +4,7 @@
 // contact history for the tribology module, the spectrum, the stability
 // verdict and ParaView series.
 
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/numerics/data_out.h>
@@ -106,6 +107,9 @@ namespace squeal
         throw std::runtime_error(
           "the braking simulation is serial for now (the contact multipliers "
           "are found on one process); run it without mpirun");
+      // Serial run: the products may use every core (deal.II threads; the
+      // program starts with one thread per MPI rank).
+      MultithreadInfo::set_thread_limit();
       work_dir =
         output::partial_directory(prm.output.directory, prm.output.overwrite);
       output::fresh_directory(work_dir, "vtu");
@@ -166,8 +170,74 @@ namespace squeal
           fixed_width(limit.omega_max / (2 * numbers::PI)) +
           " Hz with Rayleigh beta); set it at most to the limit, or 0 for " +
           fixed_width(tr.safety_factor) + " x the limit");
-      dynamics = std::make_unique<ExplicitDynamics>(stiffness, mass, fixed, s,
-                                                    limit.critical);
+      // The matrix-free product: elasticity per material plus the springs'
+      // diagonal (each spring ties one DoF to the ground).
+      {
+        const physics::PETScMatrix &ks = model.stiffness_springs;
+        const double scale = prm.nominal_point().spring_stiffness /
+                             model.parts().reference.spring_stiffness;
+        Vector<double> springs(n);
+        for (unsigned int i = 0; i < n; ++i)
+          for (auto e = ks.begin(i); e != ks.end(i); ++e)
+            if (e->column() == i && !fixed[i])
+              springs[i] = scale * e->value();
+            else if (e->value() != 0. && !fixed[i])
+              throw std::runtime_error("the support's springs couple two DoFs: "
+                                       "the matrix-free product needs them "
+                                       "grounded");
+        const auto &mat = prm.materials;
+        matrix_free     = std::make_unique<ElasticityOperator>(
+          model.dof_handler, model.mapping, constraints,
+          [&mat](const types::material_id id) {
+            const parameters::Material &m =
+              id == geometry::material::disc ? mat.disc :
+              id == geometry::material::pad  ? mat.pad :
+                                               mat.support;
+            const double E = m.youngs_modulus, nu = m.poisson_ratio;
+            return std::make_pair(E * nu / ((1 + nu) * (1 - 2 * nu)),
+                                  E / (2 * (1 + nu)));
+          },
+          springs);
+        // Both products on one vector: time and agreement.
+        Vector<double> x(n), y_sparse(n), y_free(n);
+        for (unsigned int i = 0; i < n; ++i)
+          x[i] = fixed[i] ? 0. : std::sin(0.37 * i);
+        const auto time_of = [&](const auto &product, Vector<double> &y) {
+          const auto   t0 = std::chrono::steady_clock::now();
+          for (unsigned int k = 0; k < 10; ++k)
+            product(y, x);
+          return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+                   .count() / 10.;
+        };
+        result.sparse_product = time_of(
+          [&](Vector<double> &y, const Vector<double> &v) { stiffness.vmult(y, v); },
+          y_sparse);
+        result.matrix_free_product = time_of(
+          [&](Vector<double> &y, const Vector<double> &v) { matrix_free->vmult(y, v); },
+          y_free);
+        for (unsigned int i = 0; i < n; ++i)
+          if (fixed[i])
+            y_sparse[i] = 0.;
+        y_free -= y_sparse;
+        const double difference = y_free.l2_norm() / y_sparse.l2_norm();
+        pcout << "Stiffness product: sparse " << result.sparse_product * 1e3
+              << " ms, matrix-free " << result.matrix_free_product * 1e3
+              << " ms (relative difference " << difference << "); using "
+              << tr.stiffness_product << std::endl;
+        if (!(difference < 1e-10))
+          throw std::runtime_error(
+            "the matrix-free stiffness product differs from the assembled "
+            "matrix by " + fixed_width(difference) + " (relative)");
+      }
+      if (tr.stiffness_product == "matrix-free")
+        dynamics = std::make_unique<ExplicitDynamics>(
+          [this](Vector<double> &y, const Vector<double> &v) {
+            matrix_free->vmult(y, v);
+          },
+          n, mass, fixed, s, limit.critical);
+      else
+        dynamics = std::make_unique<ExplicitDynamics>(stiffness, mass, fixed, s,
+                                                      limit.critical);
       const double omega =
         prm.interface.rotation_sense == "counterclockwise" ?
           tr.angular_velocity :

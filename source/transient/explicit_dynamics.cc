@@ -119,7 +119,19 @@ namespace squeal
                                        const std::vector<bool>    &fixed,
                                        const ExplicitSettings     &settings,
                                        const double                dt_critical)
-      : K(K)
+      : ExplicitDynamics([&K](Vector<double> &d,
+                              const Vector<double> &s) { K.vmult(d, s); },
+                         K.m(), mass, fixed, settings, dt_critical)
+    {}
+
+    ExplicitDynamics::ExplicitDynamics(
+      std::function<void(Vector<double> &, const Vector<double> &)> product,
+      const unsigned int                                            n,
+      const Vector<double>                                         &mass,
+      const std::vector<bool>                                      &fixed,
+      const ExplicitSettings                                       &settings,
+      const double                                                  dt_critical)
+      : K(std::move(product))
       , mass(mass)
       , fixed(fixed)
       , settings(settings)
@@ -138,7 +150,7 @@ namespace squeal
       if (!msg.str().empty())
         throw std::runtime_error(msg.str());
       for (auto *vec : {&u, &v, &a, &v_pred, &u_next, &work})
-        vec->reinit(K.m());
+        vec->reinit(n);
     }
 
     void
@@ -152,8 +164,16 @@ namespace squeal
       delassus.assign(n_s, 0.);
       master_slide.assign(n_s, Tensor<1, 3>());
       multiplier.assign(n_s, Tensor<1, 3>());
+      // The node's 3 x 3 Delassus block is c sum_k w_k^2 diag(1/m_k) (0 for
+      // a fixed component); the local solve uses its largest entry, which
+      // under-relaxes nodes with a fixed component and keeps the exact
+      // local solution elsewhere (the fixed point is the same).
       const auto inverse_mass = [&](const contact::NodeDofs &d) {
-        return fixed[d[0]] ? 0. : 1. / mass[d[0]];
+        double im = 0.;
+        for (unsigned int k = 0; k < 3; ++k)
+          if (!fixed[d[k]])
+            im = std::max(im, 1. / mass[d[k]]);
+        return im;
       };
       for (unsigned int j = 0; j < n_s; ++j)
         {
@@ -202,7 +222,7 @@ namespace squeal
       // a*_n = M^-1 (f_n - K (u_n + beta v~_n) - alpha M v~_n)
       work = u;
       work.add(settings.beta, v_pred);
-      K.vmult(a, work);
+      K(a, work);
       const unsigned int n = u.size();
       const double       c = dt * dt * (settings.beta2 + 0.5);
       for (unsigned int i = 0; i < n; ++i)
@@ -240,8 +260,8 @@ namespace squeal
       const double       c   = dt * dt * (settings.beta2 + 0.5);
       const double       mu  = settings.friction_coefficient;
       const unsigned int n_s = rows.size();
-      const auto inverse_mass = [&](const contact::NodeDofs &d) {
-        return fixed[d[0]] ? 0. : 1. / mass[d[0]];
+      const auto inverse_mass = [&](const types::global_dof_index i) {
+        return fixed[i] ? 0. : 1. / mass[i];
       };
       // R_j(x) = sum_k w_k x_k: weighted motion of the master against the
       // slave node j [m^3 or m^3/s].
@@ -260,11 +280,8 @@ namespace squeal
       // Warm start: the multipliers of the previous step, applied.
       const auto apply = [&](const unsigned int j, const Tensor<1, 3> &dP) {
         for (const auto &[d, w] : rows[j])
-          {
-            const double s = c * w * inverse_mass(d);
-            for (unsigned int k = 0; k < 3; ++k)
-              u_next[d[k]] += s * dP[k];
-          }
+          for (unsigned int k = 0; k < 3; ++k)
+            u_next[d[k]] += c * w * inverse_mass(d[k]) * dP[k];
       };
       for (unsigned int j = 0; j < n_s; ++j)
         if (!rows[j].empty())
@@ -331,11 +348,8 @@ namespace squeal
               continue;
             }
           for (const auto &[d, w] : rows[j])
-            {
-              const double s = w * inverse_mass(d);
-              for (unsigned int k = 0; k < 3; ++k)
-                a[d[k]] += s * multiplier[j][k];
-            }
+            for (unsigned int k = 0; k < 3; ++k)
+              a[d[k]] += w * inverse_mass(d[k]) * multiplier[j][k];
           const Tensor<1, 3> &nj = mortar->normals[j];
           const double        z  = multiplier[j] * nj;
           const Tensor<1, 3>  lambda = multiplier[j] - z * nj;
@@ -374,7 +388,8 @@ namespace squeal
     double
     ExplicitDynamics::strain_energy() const
     {
-      return K.matrix_norm_square(u) / 2.;
+      K(work, u);
+      return (work * u) / 2.;
     }
 
     std::vector<double>

@@ -285,6 +285,8 @@ namespace squeal
       double       contact_tolerance  = 1e-10; ///< projected Gauss-Seidel
       unsigned int contact_iterations = 2000;
       double       initial_perturbation = 0.; ///< m/s, see help
+      /// `matrix-free` (deal.II MatrixFree) or `sparse` (assembled matrix)
+      std::string  stiffness_product = "matrix-free";
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };

@@ -29,6 +29,7 @@
 
 #include <squeal/contact/mortar.h>
 #include <squeal/physics/structural_model.h>
+#include <squeal/transient/elasticity_operator.h>
 #include <squeal/transient/explicit_dynamics.h>
 #include <squeal/transient/signal.h>
 #include <squeal/tribology/contact_history.h>
@@ -47,6 +48,8 @@ namespace squeal
     {
       unsigned int n_dofs = 0;
       double time_step = 0., critical_time_step = 0.; ///< s
+      /// wall time of one stiffness product [s]: sparse, matrix-free
+      double sparse_product = 0., matrix_free_product = 0.;
       unsigned int n_steps = 0;
       double wall_time = 0.;          ///< s, the time loop
       double dominant_frequency = 0.; ///< Hz, probe acceleration
@@ -112,6 +115,7 @@ namespace squeal
       dealii::Vector<double>            load;  ///< at the full normal force [N]
       std::vector<bool>                 fixed;
       contact::MortarOperators          mortar;
+      std::unique_ptr<ElasticityOperator> matrix_free;
       std::unique_ptr<ExplicitDynamics> dynamics;
 
       dealii::Tensor<1, 3>     sliding, radial; ///< map frame

@@ -153,6 +153,17 @@ namespace squeal
                        const ExplicitSettings             &settings,
                        double                              dt_critical);
 
+      /** The same with the stiffness given as its product dst = K src
+       * (e.g. ElasticityOperator::vmult); @p n its size. */
+      ExplicitDynamics(
+        std::function<void(dealii::Vector<double> &,
+                           const dealii::Vector<double> &)> stiffness_product,
+        unsigned int                                      n,
+        const dealii::Vector<double>                     &mass,
+        const std::vector<bool>                          &fixed,
+        const ExplicitSettings                           &settings,
+        double                                            dt_critical);
+
       /**
        * Adds frictional contact on @p mortar (kept by reference).
        * @param master_velocity rigid velocity of a master point [m/s] (the
@@ -201,7 +212,9 @@ namespace squeal
     private:
       void solve_contact();
 
-      const dealii::SparseMatrix<double> &K;
+      std::function<void(dealii::Vector<double> &,
+                         const dealii::Vector<double> &)>
+                                         K;
       const dealii::Vector<double>       &mass;
       std::vector<bool>                  fixed;
       ExplicitSettings                   settings;
@@ -209,7 +222,8 @@ namespace squeal
 
       unsigned int           n_step  = 0;
       bool                   pending = false; ///< t_n complete, not advanced
-      dealii::Vector<double> u, v, a, v_pred, u_next, work;
+      dealii::Vector<double> u, v, a, v_pred, u_next;
+      mutable dealii::Vector<double> work;
 
       /// per slave node: (node DoFs, weight w_k [m^2]) of the slave node
       /// (-D_jj) and its master nodes (M_jl)

@@ -1,0 +1,131 @@
+#!/usr/bin/python3
+"""End-to-end check of the braking simulation (Scene/Analysis = braking).
+
+usage: check_braking.py SQUEAL SQUEAL_TRIBOLOGY PRM WORKDIR
+
+Runs build/squeal on the coarse TriboBrake for 6 ms and checks:
+- the output files (forces.csv, probes.csv, spectrum.csv, envelope.csv,
+  summary.csv, contact_history.h5, transient.pvd, contact.pvd, animation.pvd
+  and the .vtu files they list, parameters.prm) and scripts/plot_braking.py;
+- Coulomb's law in the sums: |F_T| <= mu F_N at every sample (1e-9), and
+  F_T = mu F_N (1e-3: each node's slip direction follows the small
+  transverse vibration velocities besides the disc's sliding) while every
+  contact node slips (after the ramp, before any instability has grown);
+- the mean normal force over the last 2 ms equals the 100 N load within 2 %
+  (the momentum balance of a bounded motion);
+- the summary's verdict fields and the time step below its limit;
+- the contact history is read by squeal-tribology (damage per node);
+- the matrix-free stiffness product gives the same run as the sparse one
+  (forces to 1e-6 relative over the first 3 ms);
+- a time step above the stability limit is refused with the limit in the
+  message; a second run into the same directory is refused.
+"""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+squeal, tribology, prm, work = sys.argv[1:5]
+prm = os.path.abspath(prm)
+here = os.path.dirname(os.path.abspath(__file__))
+plot = os.path.join(here, "..", "..", "scripts", "plot_braking.py")
+os.makedirs(work, exist_ok=True)
+os.chdir(work)
+n_fail = 0
+
+
+def check(name, ok, detail=""):
+    global n_fail
+    print(f"{name}: {'ok' if ok else 'FAILED ' + detail}")
+    if not ok:
+        n_fail += 1
+
+
+def run(name, extra="", expect_ok=True):
+    out = os.path.abspath(name)
+    if expect_ok:
+        shutil.rmtree(out, ignore_errors=True)
+    with open(name + ".prm", "w") as f:
+        f.write(f"include {prm}\n{extra}subsection Output\n  set Directory = {out}\nend\n")
+    r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
+    if expect_ok and r.returncode != 0:
+        print(f"FAILED: {name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
+        sys.exit(1)
+    return out, r
+
+
+def table(path):
+    with open(path) as f:
+        return list(csv.DictReader(l for l in f if not l.startswith("#")))
+
+
+out, _ = run("sparse")
+files = ["forces.csv", "probes.csv", "spectrum.csv", "envelope.csv", "summary.csv",
+         "contact_history.h5", "transient.pvd", "contact.pvd", "animation.pvd",
+         "parameters.prm"]
+check("output files", all(os.path.isfile(os.path.join(out, f)) for f in files))
+listed = []
+for pvd in ("transient.pvd", "contact.pvd", "animation.pvd"):
+    for ds in ET.parse(os.path.join(out, pvd)).getroot().iter("DataSet"):
+        listed.append(ds.get("file"))
+check("every .vtu listed in the .pvd files exists",
+      len(listed) >= 3 + 3 + 4 and all(os.path.isfile(os.path.join(out, f)) for f in listed))
+
+forces = table(os.path.join(out, "forces.csv"))
+mu, load = 0.5, 100.
+excess = max(abs(float(r["tangential_force_N"])) - mu * float(r["normal_force_N"]) for r in forces)
+check("|F_T| <= mu F_N at every sample", excess <= 1e-9 * load, f"excess {excess}")
+steady = [r for r in forces if 2.2e-3 <= float(r["time_s"]) <= 3e-3 and int(r["n_stick"]) == 0
+          and float(r["normal_force_N"]) > 0]
+err = max(abs(float(r["tangential_force_N"]) - mu * float(r["normal_force_N"])) for r in steady)
+check("F_T = mu F_N while every contact node slips (1e-3)",
+      len(steady) > 10 and err <= 1e-3 * mu * load,
+      f"{len(steady)} samples, error {err}")
+late = [float(r["normal_force_N"]) for r in forces if float(r["time_s"]) >= 4e-3]
+mean = sum(late) / len(late)
+check("mean normal force over the last 2 ms = load (2 %)", abs(mean - load) <= 0.02 * load,
+      f"mean {mean}")
+
+summary = {r["quantity"]: r["value"] for r in table(os.path.join(out, "summary.csv"))}
+check("summary: verdict and growth fields",
+      all(k in summary for k in ("verdict", "dominant_frequency_Hz", "growth_rate_per_s",
+                                 "separated", "leading_edge_p_max_over_mean")))
+check("time step below its stability limit",
+      0 < float(summary["time_step_s"]) <= float(summary["critical_time_step_s"]))
+probes = table(os.path.join(out, "probes.csv"))
+check("probes.csv has every sample", len(probes) == len(forces) and len(probes) > 1000)
+
+r = subprocess.run(["/usr/bin/python3", plot, out], capture_output=True, text=True)
+check("plot_braking.py writes braking.png",
+      r.returncode == 0 and os.path.isfile(os.path.join(out, "braking.png")), r.stderr)
+
+with open("tribology.prm", "w") as f:
+    f.write(f"subsection Contact history\n  set File = {out}/contact_history.h5\nend\n"
+            "subsection Images\n  set Files =\nend\n"
+            f"subsection Output\n  set Directory = {os.path.abspath('tribology')}\n"
+            "  set Overwrite = true\nend\n")
+r = subprocess.run([tribology, "tribology.prm"], capture_output=True, text=True)
+damage = os.path.join("tribology", "damage.csv")
+ok = r.returncode == 0 and os.path.isfile(damage)
+check("squeal-tribology reads the contact history", ok, r.stdout[-2000:] + r.stderr[-2000:])
+if ok:
+    rows = table(damage)
+    check("a damage row per pad-face node (25)", len(rows) == 25, str(len(rows)))
+
+mf, _ = run("matrix_free", "subsection Transient\n  set Stiffness product = matrix-free\n"
+            "  set End time = 0.003\nend\n")
+f2 = table(os.path.join(mf, "forces.csv"))
+diff = max(abs(float(a["normal_force_N"]) - float(b["normal_force_N"]))
+           for a, b in zip(forces, f2) if float(a["time_s"]) <= 3e-3)
+check("matrix-free run = sparse run (1e-6 of the load)", diff <= 1e-6 * load, f"diff {diff}")
+
+_, r = run("too_large", "subsection Transient\n  set Time step = 1e-5\nend\n", expect_ok=False)
+check("a time step above the limit is refused",
+      r.returncode != 0 and "exceeds the stability limit" in r.stderr, r.stderr)
+_, r = run("sparse", expect_ok=False)
+check("an existing output directory is refused",
+      r.returncode != 0 and "exists" in r.stderr, r.stderr)
+print("all checks passed" if n_fail == 0 else "CHECKS FAILED")
+sys.exit(1 if n_fail else 0)
