@@ -4,7 +4,7 @@
 usage: plot_braking.py OUTPUT_DIR
 
 Writes OUTPUT_DIR/braking.png: the sum of the normal and tangential contact
-forces against time, the probe's (pad leading edge) acceleration along the
+forces against time, the probe's (pad leading edge) velocity along the
 sliding direction with its envelope and fitted growth, the power spectral
 density of that acceleration, and the stick / slip / separated node counts.
 """
@@ -54,15 +54,15 @@ def main():
 
     a = ax[0][1]
     tp = [1e3 * float(r["time_s"]) for r in probes]
-    acc = [sum(s * float(r["a_%s_m_per_s2" % c]) for s, c in zip(sliding, "xyz")) for r in probes]
-    a.plot(tp, acc, lw=0.5, label="probe acceleration")
+    vel = [sum(s * float(r["v_%s_m_per_s" % c]) for s, c in zip(sliding, "xyz")) for r in probes]
+    a.plot(tp, vel, lw=0.5, label="probe velocity")
     if envelope:
         te = [1e3 * float(r["time_s"]) for r in envelope]
-        a.plot(te, [float(r["envelope_m_per_s2"]) for r in envelope], "r-", lw=1, label="envelope")
+        a.plot(te, [float(r["envelope_m_per_s"]) for r in envelope], "r-", lw=1, label="envelope")
         g = float(summary.get("growth_rate_per_s", 0))
         t0 = float(summary.get("growth_fit_start_s", 0))
         t1 = float(summary.get("growth_fit_end_s", 0))
-        pts = [(1e3 * float(r["time_s"]), float(r["envelope_m_per_s2"])) for r in envelope
+        pts = [(1e3 * float(r["time_s"]), float(r["envelope_m_per_s"])) for r in envelope
                if t0 <= float(r["time_s"]) <= t1]
         if pts and g != 0:
             tm, em = pts[0]
@@ -70,7 +70,7 @@ def main():
             a.plot(xs, [em * math.exp(g * (x - tm) * 1e-3) for x in xs], "k--",
                    label="fit: growth %.0f 1/s" % g)
     a.set_xlabel("time [ms]")
-    a.set_ylabel("tangential acceleration, pad leading edge [m/s^2]")
+    a.set_ylabel("tangential velocity, pad leading edge [m/s]")
     a.legend()
     a.grid(alpha=0.3)
 
@@ -78,7 +78,7 @@ def main():
     f = [float(r["frequency_Hz"]) for r in spectrum]
     p = [float(r["psd_m2_per_s4_per_Hz"]) for r in spectrum]
     a.semilogy([x / 1e3 for x in f[1:]], p[1:])
-    a.set_xlim(0, min(25, f[-1] / 1e3) if f else 25)
+    a.set_xlim(0, min(50, f[-1] / 1e3) if f else 50)
     a.set_xlabel("frequency [kHz]")
     a.set_ylabel("PSD of the acceleration [(m/s^2)^2/Hz]")
     a.set_title("dominant %.0f Hz; %s" % (float(summary["dominant_frequency_Hz"]), summary["verdict"]))

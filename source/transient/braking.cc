@@ -505,32 +505,42 @@ namespace squeal
       // Analysis window: Spectrum start (default: the second half).
       const double t_spec =
         tr.spectrum_start >= 0. ? tr.spectrum_start : tr.end_time / 2.;
-      std::vector<double> acc, acc_after_ramp;
+      // The acceleration along the sliding direction for the spectrum (as
+      // the thesis showed it); the velocity for the dominant frequency and
+      // the envelope: the acceleration weights the limit cycle's harmonics
+      // by k^2 and can make the third one look dominant.
+      std::vector<double> acc, vel, vel_after_ramp;
       double              t_after_ramp = -1.;
       for (const auto &row : samples)
         {
           const double a_t = row[14] * sliding[0] + row[15] * sliding[1] +
                              row[16] * sliding[2];
+          const double v_t = row[11] * sliding[0] + row[12] * sliding[1] +
+                             row[13] * sliding[2];
           if (row[0] >= t_spec)
-            acc.push_back(a_t);
+            {
+              acc.push_back(a_t);
+              vel.push_back(v_t);
+            }
           if (row[0] >= tr.ramp_duration)
             {
               if (t_after_ramp < 0.)
                 t_after_ramp = row[0];
-              acc_after_ramp.push_back(a_t);
+              vel_after_ramp.push_back(v_t);
             }
         }
-      Spectrum spectrum;
+      Spectrum spectrum, velocity_spectrum;
       if (acc.size() >= 16)
         {
           spectrum                  = welch_psd(acc, rate);
-          result.dominant_frequency = dominant_frequency(acc, rate, 100.);
+          velocity_spectrum         = welch_psd(vel, rate);
+          result.dominant_frequency = dominant_frequency(vel, rate, 100.);
         }
-      if (result.dominant_frequency > 0. && acc_after_ramp.size() > 0)
+      if (result.dominant_frequency > 0. && vel_after_ramp.size() > 0)
         {
           try
             {
-              result.growth = fit_growth(acc_after_ramp, rate, t_after_ramp,
+              result.growth = fit_growth(vel_after_ramp, rate, t_after_ramp,
                                          1. / result.dominant_frequency);
             }
           catch (const std::exception &)
@@ -597,16 +607,18 @@ namespace squeal
       }
       {
         std::ofstream out(dir / "spectrum.csv");
-        out << "# Welch PSD of the probe's acceleration along the sliding "
-               "direction, t >= "
-            << t_spec << " s\nfrequency_Hz,psd_m2_per_s4_per_Hz\n"
+        out << "# Welch PSD of the probe's acceleration and velocity along "
+               "the sliding direction, t >= "
+            << t_spec
+            << " s\nfrequency_Hz,psd_m2_per_s4_per_Hz,psd_velocity_m2_per_s2_per_Hz\n"
             << std::setprecision(10);
         for (unsigned int k = 0; k < spectrum.psd.size(); ++k)
-          out << spectrum.frequency[k] << ',' << spectrum.psd[k] << '\n';
+          out << spectrum.frequency[k] << ',' << spectrum.psd[k] << ','
+              << velocity_spectrum.psd[k] << '\n';
       }
       {
         std::ofstream out(dir / "envelope.csv");
-        out << "time_s,envelope_m_per_s2\n" << std::setprecision(10);
+        out << "time_s,envelope_m_per_s\n" << std::setprecision(10);
         for (unsigned int k = 0; k < g.time.size(); ++k)
           out << g.time[k] << ',' << g.envelope[k] << '\n';
       }
@@ -620,7 +632,7 @@ namespace squeal
             << "\ngrowth_rate_per_s," << g.growth_rate
             << "\ngrowth_fit_start_s," << g.fit_start
             << "\ngrowth_fit_end_s," << g.fit_end
-            << "\nlimit_cycle_amplitude_m_per_s2," << g.final_amplitude
+            << "\nlimit_cycle_amplitude_m_per_s," << g.final_amplitude
             << "\nlimit_cycle," << (g.limit_cycle ? 1 : 0)
             << "\nseparated," << (result.separated ? 1 : 0)
             << "\nleading_edge_p_min_over_mean," << result.leading_min_over_mean
@@ -656,7 +668,7 @@ namespace squeal
       pcout << "\n  growth rate " << g.growth_rate << " 1/s (fitted "
             << g.fit_start * 1e3 << "-" << g.fit_end * 1e3
             << " ms), final amplitude " << g.final_amplitude
-            << " m/s^2 (probe acceleration along the sliding direction)"
+            << " m/s (probe velocity along the sliding direction)"
             << "\n  pad separated after the ramp: "
             << (result.separated ? "yes" : "no")
             << "; leading-edge pressure " << result.leading_min_over_mean
