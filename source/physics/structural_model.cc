@@ -45,6 +45,14 @@ namespace squeal
       matrix.compress(VectorOperation::insert);
     }
 
+    const parameters::Material &
+    body_material(const parameters::Materials &m, const types::material_id id)
+    {
+      return id == geometry::material::disc ? m.disc :
+             id == geometry::material::pad  ? m.pad :
+                                              m.support;
+    }
+
     void
     copy_to_serial(const PETScMatrix    &K,
                    SparsityPattern      &pattern,
@@ -212,9 +220,7 @@ namespace squeal
         if (cell->is_locally_owned())
           {
             const parameters::Material &m =
-              cell->material_id() == geometry::material::disc ? mat.disc :
-              cell->material_id() == geometry::material::pad  ? mat.pad :
-                                                                mat.support;
+              body_material(mat, cell->material_id());
             const bool   is_pad = cell->material_id() == geometry::material::pad;
             const bool   is_support =
               cell->material_id() == geometry::material::support;
@@ -222,8 +228,7 @@ namespace squeal
             const double nu = m.poisson_ratio;
             const double density =
               is_support ? reference.support_density : m.density;
-            const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-            const double mu     = E / (2 * (1 + nu));
+            const auto [lambda, mu] = lame_constants(E, nu);
 
             fe_values.reinit(cell);
             cell_k = 0;

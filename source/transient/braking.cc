@@ -44,15 +44,10 @@ namespace squeal
           const DataPostprocessorInputs::Vector<3> &in,
           std::vector<Vector<double>> &out) const override
         {
-          const auto cell = in.template get_cell<3>();
-          const auto &m   = prm.materials;
-          const parameters::Material &mat =
-            cell->material_id() == geometry::material::disc ? m.disc :
-            cell->material_id() == geometry::material::pad  ? m.pad :
-                                                              m.support;
-          const double E = mat.youngs_modulus, nu = mat.poisson_ratio;
-          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-          const double mu     = E / (2 * (1 + nu));
+          const parameters::Material &mat = physics::body_material(
+            prm.materials, in.template get_cell<3>()->material_id());
+          const auto [lambda, mu] =
+            physics::lame_constants(mat.youngs_modulus, mat.poisson_ratio);
           for (unsigned int q = 0; q < out.size(); ++q)
             {
               Tensor<2, 3> grad;
@@ -80,7 +75,7 @@ namespace squeal
       }
 
       std::string
-      fixed_width(const double x)
+      as_text(const double x)
       {
         std::ostringstream s;
         s << std::setprecision(10) << x;
@@ -135,11 +130,10 @@ namespace squeal
 
       const double rho_support = prm.nominal_point().support_density;
       mass = lumped_mass(model.dof_handler, model.mapping, [&](const auto &cell) {
-        return cell->material_id() == geometry::material::disc ?
-                 prm.materials.disc.density :
-               cell->material_id() == geometry::material::pad ?
-                 prm.materials.pad.density :
-                 rho_support;
+        return cell->material_id() == geometry::material::support ?
+                 rho_support :
+                 physics::body_material(prm.materials, cell->material_id())
+                   .density;
       });
 
       mortar = contact::build_mortar_operators(model.dof_handler, model.mapping,
@@ -164,12 +158,12 @@ namespace squeal
       s.pgs_max_iterations   = tr.contact_iterations;
       if (tr.time_step > limit.critical)
         throw std::runtime_error(
-          "Transient/Time step = " + fixed_width(tr.time_step) +
-          " s exceeds the stability limit " + fixed_width(limit.critical) +
+          "Transient/Time step = " + as_text(tr.time_step) +
+          " s exceeds the stability limit " + as_text(limit.critical) +
           " s of this mesh (largest frequency " +
-          fixed_width(limit.omega_max / (2 * numbers::PI)) +
+          as_text(limit.omega_max / (2 * numbers::PI)) +
           " Hz with Rayleigh beta); set it at most to the limit, or 0 for " +
-          fixed_width(tr.safety_factor) + " x the limit");
+          as_text(tr.safety_factor) + " x the limit");
       // The matrix-free product: elasticity per material plus the springs'
       // diagonal (each spring ties one DoF to the ground).
       {
@@ -189,13 +183,8 @@ namespace squeal
         matrix_free     = std::make_unique<ElasticityOperator>(
           model.dof_handler, model.mapping, constraints,
           [&mat](const types::material_id id) {
-            const parameters::Material &m =
-              id == geometry::material::disc ? mat.disc :
-              id == geometry::material::pad  ? mat.pad :
-                                               mat.support;
-            const double E = m.youngs_modulus, nu = m.poisson_ratio;
-            return std::make_pair(E * nu / ((1 + nu) * (1 - 2 * nu)),
-                                  E / (2 * (1 + nu)));
+            const parameters::Material &m = physics::body_material(mat, id);
+            return physics::lame_constants(m.youngs_modulus, m.poisson_ratio);
           },
           springs);
         // Both products on one vector: time and agreement.
@@ -227,7 +216,7 @@ namespace squeal
         if (!(difference < 1e-10))
           throw std::runtime_error(
             "the matrix-free stiffness product differs from the assembled "
-            "matrix by " + fixed_width(difference) + " (relative)");
+            "matrix by " + as_text(difference) + " (relative)");
       }
       if (tr.stiffness_product == "matrix-free")
         dynamics = std::make_unique<ExplicitDynamics>(
@@ -455,8 +444,7 @@ namespace squeal
         {
           {
             TimerOutput::Scope ts(timer, "time steps");
-            f = load;
-            f *= ramp(k * dt, tr.ramp_duration);
+            f.equ(ramp(k * dt, tr.ramp_duration), load);
             d.step(f);
           }
           if (k % every == 0)

@@ -132,7 +132,7 @@ namespace squeal
       const ExplicitSettings                                       &settings,
       const double                                                  dt_critical)
       : K(std::move(product))
-      , mass(mass)
+      , inverse_mass(n)
       , fixed(fixed)
       , settings(settings)
     {
@@ -151,6 +151,8 @@ namespace squeal
         throw std::runtime_error(msg.str());
       for (auto *vec : {&u, &v, &a, &v_pred, &u_next, &work})
         vec->reinit(n);
+      for (unsigned int i = 0; i < n; ++i)
+        inverse_mass[i] = fixed[i] ? 0. : 1. / mass[i];
     }
 
     void
@@ -168,12 +170,9 @@ namespace squeal
       // a fixed component); the local solve uses its largest entry, which
       // under-relaxes nodes with a fixed component and keeps the exact
       // local solution elsewhere (the fixed point is the same).
-      const auto inverse_mass = [&](const contact::NodeDofs &d) {
-        double im = 0.;
-        for (unsigned int k = 0; k < 3; ++k)
-          if (!fixed[d[k]])
-            im = std::max(im, 1. / mass[d[k]]);
-        return im;
+      const auto node_inverse_mass = [&](const contact::NodeDofs &d) {
+        return std::max({inverse_mass[d[0]], inverse_mass[d[1]],
+                         inverse_mass[d[2]]});
       };
       for (unsigned int j = 0; j < n_s; ++j)
         {
@@ -187,7 +186,7 @@ namespace squeal
                 master_slide[j] += w * master_velocity(m.master_points[l]);
             }
           for (const auto &[d, w] : rows[j])
-            delassus[j] += w * w * inverse_mass(d);
+            delassus[j] += w * w * node_inverse_mass(d);
         }
       contact.pressure.reinit(n_s);
       contact.slip_velocity.reinit(n_s);
@@ -233,7 +232,7 @@ namespace squeal
           }
         else
           {
-            a[i] = (f[i] - a[i]) / mass[i] - settings.alpha * v_pred[i];
+            a[i] = (f[i] - a[i]) * inverse_mass[i] - settings.alpha * v_pred[i];
             // u_{n+1} = u_n + dt v_n + dt^2/2 a_n with v_n = v~_n + dt beta2 a_n
             u_next[i] = u[i] + dt * v_pred[i] + c * a[i];
           }
@@ -260,9 +259,6 @@ namespace squeal
       const double       c   = dt * dt * (settings.beta2 + 0.5);
       const double       mu  = settings.friction_coefficient;
       const unsigned int n_s = rows.size();
-      const auto inverse_mass = [&](const types::global_dof_index i) {
-        return fixed[i] ? 0. : 1. / mass[i];
-      };
       // R_j(x) = sum_k w_k x_k: weighted motion of the master against the
       // slave node j [m^3 or m^3/s].
       const auto relative = [&](const unsigned int j, const Vector<double> &x) {
@@ -281,7 +277,7 @@ namespace squeal
       const auto apply = [&](const unsigned int j, const Tensor<1, 3> &dP) {
         for (const auto &[d, w] : rows[j])
           for (unsigned int k = 0; k < 3; ++k)
-            u_next[d[k]] += c * w * inverse_mass(d[k]) * dP[k];
+            u_next[d[k]] += c * w * inverse_mass[d[k]] * dP[k];
       };
       for (unsigned int j = 0; j < n_s; ++j)
         if (!rows[j].empty())
@@ -349,7 +345,7 @@ namespace squeal
             }
           for (const auto &[d, w] : rows[j])
             for (unsigned int k = 0; k < 3; ++k)
-              a[d[k]] += w * inverse_mass(d[k]) * multiplier[j][k];
+              a[d[k]] += w * inverse_mass[d[k]] * multiplier[j][k];
           const Tensor<1, 3> &nj = mortar->normals[j];
           const double        z  = multiplier[j] * nj;
           const Tensor<1, 3>  lambda = multiplier[j] - z * nj;
@@ -381,7 +377,8 @@ namespace squeal
     {
       double e = 0.;
       for (unsigned int i = 0; i < v.size(); ++i)
-        e += mass[i] * v[i] * v[i];
+        if (inverse_mass[i] > 0.)
+          e += v[i] * v[i] / inverse_mass[i];
       return e / 2.;
     }
 
@@ -392,40 +389,5 @@ namespace squeal
       return (work * u) / 2.;
     }
 
-    std::vector<double>
-    ExplicitDynamics::save_state() const
-    {
-      std::vector<double> s;
-      s.reserve(2 + 5 * u.size() + 3 * multiplier.size());
-      s.push_back(n_step);
-      s.push_back(pending ? 1. : 0.);
-      for (const auto *vec : {&u, &v, &a, &v_pred, &u_next})
-        s.insert(s.end(), vec->begin(), vec->end());
-      for (const auto &l : multiplier)
-        for (unsigned int k = 0; k < 3; ++k)
-          s.push_back(l[k]);
-      return s;
-    }
-
-    void
-    ExplicitDynamics::load_state(const std::vector<double> &s)
-    {
-      const std::size_t n = u.size();
-      if (s.size() != 2 + 5 * n + 3 * multiplier.size())
-        throw std::runtime_error(
-          "the checkpoint does not match this model (different mesh, degree "
-          "or contact interface)");
-      n_step  = static_cast<unsigned int>(s[0]);
-      pending = s[1] != 0.;
-      auto it = s.begin() + 2;
-      for (auto *vec : {&u, &v, &a, &v_pred, &u_next})
-        {
-          std::copy(it, it + n, vec->begin());
-          it += n;
-        }
-      for (auto &l : multiplier)
-        for (unsigned int k = 0; k < 3; ++k)
-          l[k] = *it++;
-    }
   } // namespace transient
 } // namespace squeal

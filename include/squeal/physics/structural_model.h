@@ -30,6 +30,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <utility>
 
 namespace squeal
 {
@@ -37,6 +38,22 @@ namespace squeal
   {
     using PETScMatrix = dealii::PETScWrappers::MPI::SparseMatrix;
     using PETScVector = dealii::PETScWrappers::MPI::Vector;
+
+    /**
+     * The material of the body with material id @p id
+     * (geometry::material: disc, pad, else support) as set in the file.
+     */
+    const parameters::Material &
+    body_material(const parameters::Materials &materials,
+                  dealii::types::material_id   id);
+
+    /** The Lame constants (lambda, mu) [Pa] of Young's modulus @p E [Pa]
+     * and Poisson's ratio @p nu. */
+    inline std::pair<double, double>
+    lame_constants(const double E, const double nu)
+    {
+      return {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+    }
 
     /**
      * Adds to @p cell_k the stiffness of isotropic linear elasticity (Lame

@@ -80,9 +80,9 @@ namespace squeal
     /**
      * The largest stable time step of the scheme above: omega_max^2, the
      * largest eigenvalue of M^-1 K on the free DoFs, by the Lanczos process
-     * of deal.II's SolverCG (its Ritz values) on M^-1/2 K M^-1/2, raised by
-     * the residual bound of the top Ritz pair so that it is not an
-     * under-estimate; then
+     * of deal.II's SolverCG (its largest Ritz value) on M^-1/2 K M^-1/2; the
+     * Ritz value approaches omega_max^2 from below, and the run's safety
+     * factor covers the gap; then
      *   dt_c = (sqrt(2 / beta2) / omega_max) (sqrt(1 + z^2) - z),
      *   z = beta omega_max / 2
      * (Belytschko, Liu & Moran, Nonlinear Finite Elements, 2000, eq. 6.3.26
@@ -204,18 +204,14 @@ namespace squeal
       /** 1/2 u^T K u [J]. */
       double strain_energy() const;
 
-      /** The whole state, for checkpoints: n, u, v~, a, Lambda. */
-      std::vector<double> save_state() const;
-      /** Restores save_state() output. @throws on a size mismatch. */
-      void load_state(const std::vector<double> &state);
-
     private:
       void solve_contact();
 
       std::function<void(dealii::Vector<double> &,
                          const dealii::Vector<double> &)>
                                          K;
-      const dealii::Vector<double>       &mass;
+      /// 1 / m per DoF [1/kg], 0 on fixed DoFs
+      dealii::Vector<double>             inverse_mass;
       std::vector<bool>                  fixed;
       ExplicitSettings                   settings;
       const contact::MortarOperators    *mortar = nullptr;
