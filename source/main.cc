@@ -2,6 +2,7 @@
 // analysis it asks for. Usage:
 //   squeal [--overwrite] FILE.prm      run
 //   squeal --validate FILE.prm         parse and report, run nothing
+//   squeal --resume DIRECTORY          continue a stopped braking run
 //   squeal --print-parameters          every parameter with default, range, help
 
 #include <deal.II/base/mpi.h>
@@ -12,6 +13,7 @@
 #include <squeal/parameters/parameters.h>
 #include <squeal/transient/braking.h>
 
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -28,7 +30,7 @@ main(int argc, char **argv)
   const std::vector<std::string> args(argv + 1, argv + argc);
   const std::string usage =
     "usage: squeal [--overwrite] FILE.prm | --validate FILE.prm | "
-    "--print-parameters";
+    "--resume DIRECTORY | --print-parameters";
   try
     {
       squeal::parameters::AllParameters prm;
@@ -40,11 +42,13 @@ main(int argc, char **argv)
             handler.print_parameters(std::cout, ParameterHandler::PRM);
           return 0;
         }
-      bool        validate = false, overwrite = false;
+      bool        validate = false, overwrite = false, resume = false;
       std::string file;
       for (const auto &a : args)
         if (a == "--validate")
           validate = true;
+        else if (a == "--resume")
+          resume = true;
         else if (a == "--overwrite")
           overwrite = true;
         else if (!a.empty() && a[0] == '-')
@@ -54,9 +58,41 @@ main(int argc, char **argv)
         else
           throw std::runtime_error("more than one parameter file given\n" + usage);
       if (file.empty())
-        throw std::runtime_error("no parameter file given\n" + usage);
-
-      prm.read(handler, file);
+        throw std::runtime_error(std::string(resume ? "no directory" :
+                                                      "no parameter file") +
+                                 " given\n" + usage);
+      if (resume)
+        {
+          // A braking run's folder: DIRECTORY.partial holds the parameters
+          // it was started with and its checkpoint.
+          namespace fs = std::filesystem;
+          std::string directory = fs::path(file).lexically_normal().string();
+          while (directory.size() > 1 && directory.back() == '/')
+            directory.pop_back();
+          const std::string suffix = ".partial";
+          if (directory.size() > suffix.size() &&
+              directory.compare(directory.size() - suffix.size(),
+                                suffix.size(), suffix) == 0)
+            directory.resize(directory.size() - suffix.size());
+          const std::string partial = directory + suffix;
+          if (!fs::is_directory(partial))
+            throw std::runtime_error(
+              "--resume " + file + ": no run in progress ('" + partial +
+              "' does not exist" +
+              (fs::is_directory(directory) ? "; '" + directory +
+                                               "' holds a finished run" :
+                                             "") +
+              ")");
+          prm.read(handler, partial + "/parameters.prm");
+          if (prm.scene.analysis != "braking")
+            throw std::runtime_error("--resume " + file +
+                                     ": only braking runs can be resumed (" +
+                                     partial + "/parameters.prm has Scene/"
+                                     "Analysis = " + prm.scene.analysis + ")");
+          prm.output.directory = directory;
+        }
+      else
+        prm.read(handler, file);
       prm.output.overwrite = prm.output.overwrite || overwrite;
       if (validate)
         {
@@ -86,7 +122,10 @@ main(int argc, char **argv)
                                                       MPI_COMM_WORLD);
           try
             {
-              analysis.run();
+              if (resume)
+                analysis.resume();
+              else
+                analysis.run();
             }
           catch (const std::exception &e)
             {

@@ -204,6 +204,15 @@ namespace squeal
                         "multithreaded) or sparse (the assembled matrix). "
                         "Both are timed at set-up and printed; see "
                         "benchmarks/transient/README.md.");
+      prm.declare_entry("Checkpoint interval",
+                        std::to_string(checkpoint_interval),
+                        Patterns::Integer(0),
+                        "Time steps between checkpoints, written into "
+                        "DIRECTORY.partial/checkpoint/ while the run goes "
+                        "(and removed when it ends); `squeal --resume "
+                        "DIRECTORY` continues a killed run from the last one "
+                        "and gives the same result as an uninterrupted run. "
+                        "0: none.");
       prm.leave_subsection();
     }
 
@@ -229,6 +238,7 @@ namespace squeal
       contact_iterations   = prm.get_integer("Contact iterations");
       initial_perturbation = prm.get_double("Initial perturbation");
       stiffness_product    = prm.get("Stiffness product");
+      checkpoint_interval  = prm.get_integer("Checkpoint interval");
       prm.leave_subsection();
       check(history_start < end_time,
             "Transient/History start must be below Transient/End time");

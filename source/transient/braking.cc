@@ -18,6 +18,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <tuple>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -105,13 +108,25 @@ namespace squeal
       // Serial run: the products may use every core (deal.II threads; the
       // program starts with one thread per MPI rank).
       MultithreadInfo::set_thread_limit();
-      work_dir =
-        output::partial_directory(prm.output.directory, prm.output.overwrite);
-      output::fresh_directory(work_dir, "vtu");
-      {
-        std::ofstream out(fs::path(work_dir) / "parameters.prm");
-        handler.print_parameters(out, ParameterHandler::PRM);
-      }
+      if (resuming)
+        {
+          work_dir = prm.output.directory + ".partial";
+          if (!fs::is_regular_file(fs::path(work_dir) / "checkpoint" /
+                                   "state.bin"))
+            throw std::runtime_error(
+              "no checkpoint in '" + work_dir +
+              "/checkpoint': a braking run writes one every Transient/"
+              "Checkpoint interval steps and removes it when it ends");
+        }
+      else
+        {
+          work_dir = output::partial_directory(prm.output.directory,
+                                               prm.output.overwrite);
+          output::fresh_directory(work_dir, "vtu");
+          fs::create_directories(fs::path(work_dir) / "checkpoint");
+          std::ofstream out(fs::path(work_dir) / "parameters.prm");
+          handler.print_parameters(out, ParameterHandler::PRM);
+        }
       model.setup_and_assemble(pcout);
       for (const auto &line : model.constraints.get_lines())
         if (!line.entries.empty())
@@ -387,6 +402,203 @@ namespace squeal
       faces.emplace_back(d.time(), "vtu/" + face_name);
     }
 
+    namespace
+    {
+      const char checkpoint_tag[] = "squeal braking checkpoint 1";
+
+      template <typename T>
+      void
+      put(std::ostream &out, const T &x)
+      {
+        out.write(reinterpret_cast<const char *>(&x), sizeof(T));
+      }
+
+      template <typename T>
+      T
+      get(std::istream &in)
+      {
+        T x{};
+        in.read(reinterpret_cast<char *>(&x), sizeof(T));
+        return x;
+      }
+
+      void
+      put_list(std::ostream &out,
+               const std::vector<std::pair<double, std::string>> &list)
+      {
+        put<std::uint64_t>(out, list.size());
+        for (const auto &[t, name] : list)
+          {
+            put(out, t);
+            put<std::uint64_t>(out, name.size());
+            out.write(name.data(), name.size());
+          }
+      }
+
+      std::vector<std::pair<double, std::string>>
+      get_list(std::istream &in)
+      {
+        std::vector<std::pair<double, std::string>> list(
+          std::min<std::uint64_t>(get<std::uint64_t>(in), 1u << 20));
+        for (auto &[t, name] : list)
+          {
+            t = get<double>(in);
+            name.resize(std::min<std::uint64_t>(get<std::uint64_t>(in), 4096));
+            in.read(name.data(), name.size());
+          }
+        return list;
+      }
+    } // namespace
+
+    // A checkpoint: the samples and history samples taken since the last
+    // one are appended to checkpoint/samples.bin and history.bin, then the
+    // state (step, counters, snapshot lists, the integrator) goes to
+    // state.bin through a temporary file and a rename, so a kill at any
+    // moment leaves the previous complete checkpoint (the appended files are
+    // cut back to its counts on resume).
+    void
+    BrakingAnalysis::write_checkpoint(const unsigned int next_step,
+                                      const double       wall)
+    {
+      const fs::path dir = fs::path(work_dir) / "checkpoint";
+      const unsigned int n_s = mortar.n_slave();
+      {
+        std::ofstream f(dir / "samples.bin", std::ios::binary | std::ios::app);
+        for (std::size_t i = saved_samples; i < samples.size(); ++i)
+          f.write(reinterpret_cast<const char *>(samples[i].data()),
+                  sizeof(samples[i]));
+        std::ofstream h(dir / "history.bin", std::ios::binary | std::ios::app);
+        for (std::size_t i = saved_history; i < history.time.size(); ++i)
+          {
+            put(h, history.time[i]);
+            for (unsigned int j = 0; j < n_s; ++j)
+              {
+                put(h, history.p_N[j][i]);
+                put(h, history.t_T1[j][i]);
+                put(h, history.t_T2[j][i]);
+                put(h, history.slip_velocity[j][i]);
+                put<std::int32_t>(h, history.status[j][i]);
+              }
+          }
+        if (!f || !h)
+          throw std::runtime_error("could not append to the checkpoint files "
+                                   "in '" + dir.string() + "'");
+      }
+      saved_samples = samples.size();
+      saved_history = history.time.size();
+      {
+        std::ofstream f(dir / "state.bin.tmp", std::ios::binary);
+        f.write(checkpoint_tag, sizeof(checkpoint_tag));
+        put<std::uint64_t>(f, model.n_dofs());
+        put<std::uint64_t>(f, n_s);
+        put<std::uint64_t>(f, next_step);
+        put<std::uint64_t>(f, n_snapshots);
+        put<std::uint64_t>(f, n_frames);
+        put<std::uint64_t>(f, saved_samples);
+        put<std::uint64_t>(f, saved_history);
+        put(f, wall);
+        put_list(f, snapshots);
+        put_list(f, frames);
+        put_list(f, faces);
+        dynamics->save(f);
+        if (!f)
+          throw std::runtime_error("could not write the checkpoint '" +
+                                   (dir / "state.bin.tmp").string() + "'");
+      }
+      fs::rename(dir / "state.bin.tmp", dir / "state.bin");
+    }
+
+    std::pair<unsigned int, double>
+    BrakingAnalysis::read_checkpoint()
+    {
+      const fs::path dir  = fs::path(work_dir) / "checkpoint";
+      const std::string name = (dir / "state.bin").string();
+      std::ifstream f(name, std::ios::binary);
+      char tag[sizeof(checkpoint_tag)] = {};
+      f.read(tag, sizeof(tag));
+      if (!f || std::string(tag) != checkpoint_tag)
+        throw std::runtime_error("'" + name + "' is not a checkpoint of a "
+                                 "squeal braking run");
+      const unsigned int n_s     = mortar.n_slave();
+      const auto         n_dofs  = get<std::uint64_t>(f);
+      const auto         n_nodes = get<std::uint64_t>(f);
+      if (n_dofs != model.n_dofs() || n_nodes != n_s)
+        throw std::runtime_error(
+          "the checkpoint '" + name + "' was written by a model with " +
+          std::to_string(n_dofs) + " DoFs and " + std::to_string(n_nodes) +
+          " pad-face nodes; these parameters give " +
+          std::to_string(model.n_dofs()) + " and " + std::to_string(n_s) +
+          " (was DIRECTORY.partial/parameters.prm edited?)");
+      const auto   next_step = get<std::uint64_t>(f);
+      n_snapshots            = get<std::uint64_t>(f);
+      n_frames               = get<std::uint64_t>(f);
+      saved_samples          = get<std::uint64_t>(f);
+      saved_history          = get<std::uint64_t>(f);
+      const double wall      = get<double>(f);
+      snapshots              = get_list(f);
+      frames                 = get_list(f);
+      faces                  = get_list(f);
+      if (!f)
+        throw std::runtime_error("the checkpoint '" + name + "' is short");
+      try
+        {
+          dynamics->load(f);
+        }
+      catch (const std::exception &e)
+        {
+          throw std::runtime_error("the checkpoint '" + name + "': " + e.what());
+        }
+
+      // The samples up to the checkpoint; whatever a killed run appended
+      // after it is cut off.
+      const std::size_t history_record =
+        sizeof(double) + n_s * (4 * sizeof(double) + sizeof(std::int32_t));
+      const std::array<std::pair<std::string, std::size_t>, 2> files = {
+        {{"samples.bin", saved_samples * sizeof(samples[0])},
+         {"history.bin", saved_history * history_record}}};
+      for (const auto &[file, bytes] : files)
+        {
+          const fs::path path = dir / file;
+          if (!fs::exists(path) && bytes == 0)
+            continue;
+          if (!fs::exists(path) || fs::file_size(path) < bytes)
+            throw std::runtime_error("the checkpoint file '" + path.string() +
+                                     "' is shorter than its state says");
+          fs::resize_file(path, bytes);
+        }
+      samples.resize(saved_samples);
+      {
+        std::ifstream in(dir / "samples.bin", std::ios::binary);
+        for (auto &row : samples)
+          in.read(reinterpret_cast<char *>(row.data()), sizeof(row));
+      }
+      history.time.resize(saved_history);
+      for (unsigned int j = 0; j < n_s; ++j)
+        {
+          history.p_N[j].resize(saved_history);
+          history.t_T1[j].resize(saved_history);
+          history.t_T2[j].resize(saved_history);
+          history.slip_velocity[j].resize(saved_history);
+          history.status[j].resize(saved_history);
+        }
+      {
+        std::ifstream in(dir / "history.bin", std::ios::binary);
+        for (std::size_t i = 0; i < saved_history; ++i)
+          {
+            history.time[i] = get<double>(in);
+            for (unsigned int j = 0; j < n_s; ++j)
+              {
+                history.p_N[j][i]           = get<double>(in);
+                history.t_T1[j][i]          = get<double>(in);
+                history.t_T2[j][i]          = get<double>(in);
+                history.slip_velocity[j][i] = get<double>(in);
+                history.status[j][i]        = get<std::int32_t>(in);
+              }
+          }
+      }
+      return {static_cast<unsigned int>(next_step), wall};
+    }
+
     void
     BrakingAnalysis::solve()
     {
@@ -410,7 +622,7 @@ namespace squeal
           0;
 
       Vector<double> u0(model.n_dofs()), v0(model.n_dofs());
-      if (tr.initial_perturbation > 0.)
+      if (tr.initial_perturbation > 0. && !resuming)
         {
           // the seed: axial velocity in the shape of a (0,3) disc mode
           std::map<types::global_dof_index, Point<3>> points;
@@ -432,15 +644,24 @@ namespace squeal
             }
         }
       d.initialise(u0, v0);
+      unsigned int first_step = 0;
+      double       wall_before = 0.;
+      if (resuming)
+        std::tie(first_step, wall_before) = read_checkpoint();
 
       pcout << "Time loop: " << n_steps << " steps to " << tr.end_time
             << " s; samples every " << every << " steps ("
-            << history.sampling_rate << " Hz)" << std::endl;
+            << history.sampling_rate << " Hz)";
+      if (tr.checkpoint_interval > 0)
+        pcout << "; checkpoint every " << tr.checkpoint_interval << " steps";
+      if (resuming)
+        pcout << "; resumed at step " << first_step << " (t = " << d.time()
+              << " s)";
+      pcout << std::endl;
       Vector<double> f(model.n_dofs());
       const auto     start = std::chrono::steady_clock::now();
       auto           last_report = start;
-      unsigned int   n_snap = 0, n_frame = 0;
-      for (unsigned int k = 0; k < n_steps; ++k)
+      for (unsigned int k = first_step; k < n_steps; ++k)
         {
           {
             TimerOutput::Scope ts(timer, "time steps");
@@ -452,11 +673,21 @@ namespace squeal
           {
             TimerOutput::Scope ts(timer, "snapshots");
             if (snap_every > 0 && k % snap_every == 0)
-              write_snapshot("transient", n_snap++);
+              write_snapshot("transient", n_snapshots++);
             if (anim_every > 0 && d.time() >= anim_start - 1e-15 &&
-                k % anim_every == 0 && n_frame < tr.animation_frames)
-              write_snapshot("animation", n_frame++);
+                k % anim_every == 0 && n_frames < tr.animation_frames)
+              write_snapshot("animation", n_frames++);
           }
+          if (tr.checkpoint_interval > 0 && (k + 1) % tr.checkpoint_interval == 0 &&
+              k + 1 < n_steps)
+            {
+              TimerOutput::Scope ts(timer, "checkpoints");
+              write_checkpoint(k + 1,
+                               wall_before +
+                                 std::chrono::duration<double>(
+                                   std::chrono::steady_clock::now() - start)
+                                   .count());
+            }
           const auto now = std::chrono::steady_clock::now();
           if (std::chrono::duration<double>(now - last_report).count() > 10. ||
               k + 1 == n_steps)
@@ -464,7 +695,7 @@ namespace squeal
               last_report = now;
               const double wall =
                 std::chrono::duration<double>(now - start).count();
-              const double rate = (k + 1) / wall;
+              const double rate = (k + 1 - first_step) / wall;
               pcout << "  t = " << std::setw(10) << d.time() * 1e3 << " ms ("
                     << std::setw(3) << int(100. * (k + 1) / n_steps) << " %), "
                     << int(rate) << " steps/s, " << int((n_steps - k - 1) / rate)
@@ -477,9 +708,9 @@ namespace squeal
             }
         }
       result.n_steps   = n_steps;
-      result.wall_time = std::chrono::duration<double>(
-                           std::chrono::steady_clock::now() - start)
-                           .count();
+      result.wall_time = wall_before + std::chrono::duration<double>(
+                                         std::chrono::steady_clock::now() - start)
+                                         .count();
     }
 
     void
@@ -571,7 +802,7 @@ namespace squeal
         std::ofstream out(dir / "forces.csv");
         out << "time_s,normal_force_N,tangential_force_N,radial_force_N,"
                "contact_area_m2,n_stick,n_slip,n_separated\n"
-            << std::setprecision(10);
+            << std::setprecision(std::numeric_limits<double>::max_digits10);
         for (const auto &r : samples)
           out << r[0] << ',' << r[1] << ',' << r[2] << ',' << r[3] << ','
               << r[4] << ',' << r[5] << ',' << r[6] << ',' << r[7] << '\n';
@@ -584,7 +815,7 @@ namespace squeal
             << ", " << sliding[2] << ")\n"
             << "time_s,u_x_m,u_y_m,u_z_m,v_x_m_per_s,v_y_m_per_s,v_z_m_per_s,"
                "a_x_m_per_s2,a_y_m_per_s2,a_z_m_per_s2\n"
-            << std::setprecision(10);
+            << std::setprecision(std::numeric_limits<double>::max_digits10);
         for (const auto &r : samples)
           {
             out << r[0];
@@ -670,10 +901,24 @@ namespace squeal
     void
     BrakingAnalysis::run()
     {
+      run(false);
+    }
+
+    void
+    BrakingAnalysis::resume()
+    {
+      run(true);
+    }
+
+    void
+    BrakingAnalysis::run(const bool resume)
+    {
+      resuming = resume;
       setup_system();
       assemble_load();
       solve();
       output_results();
+      fs::remove_all(fs::path(work_dir) / "checkpoint");
       output::publish_directory(work_dir, prm.output.directory);
       pcout << "Results in " << prm.output.directory << std::endl;
     }

@@ -13,6 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <istream>
+#include <ostream>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -370,6 +373,74 @@ namespace squeal
               ++(slip ? out.n_slip : out.n_stick);
             }
         }
+    }
+
+    namespace
+    {
+      const char checkpoint_tag[] = "squeal explicit state 1";
+    }
+
+    void
+    ExplicitDynamics::save(std::ostream &out) const
+    {
+      out.write(checkpoint_tag, sizeof(checkpoint_tag));
+      const std::uint64_t header[3] = {n_step, pending ? 1u : 0u,
+                                       multiplier.size()};
+      out.write(reinterpret_cast<const char *>(header), sizeof(header));
+      out.write(reinterpret_cast<const char *>(&settings.time_step),
+                sizeof(double));
+      for (const auto *vec : {&u, &u_next, &v, &v_pred, &a})
+        vec->block_write(out);
+      for (const auto &l : multiplier)
+        for (unsigned int k = 0; k < 3; ++k)
+          out.write(reinterpret_cast<const char *>(&l[k]), sizeof(double));
+      if (!out)
+        throw std::runtime_error("the integrator's state could not be written");
+    }
+
+    void
+    ExplicitDynamics::load(std::istream &in)
+    {
+      char tag[sizeof(checkpoint_tag)] = {};
+      in.read(tag, sizeof(tag));
+      if (!in || std::string(tag) != checkpoint_tag)
+        throw std::runtime_error("not a state of squeal's explicit integrator");
+      std::uint64_t header[3];
+      double        dt = 0.;
+      in.read(reinterpret_cast<char *>(header), sizeof(header));
+      in.read(reinterpret_cast<char *>(&dt), sizeof(double));
+      if (!in || header[2] != multiplier.size() || dt != settings.time_step)
+        {
+          std::ostringstream msg;
+          msg << "the saved integrator state does not fit this model: "
+              << header[2] << " slave nodes and time step " << dt
+              << " s saved, " << multiplier.size() << " and "
+              << settings.time_step << " s here";
+          throw std::runtime_error(msg.str());
+        }
+      const unsigned int n = u.size();
+      try
+        {
+          for (auto *vec : {&u, &u_next, &v, &v_pred, &a})
+            {
+              vec->block_read(in);
+              if (vec->size() != n)
+                throw std::runtime_error("size");
+            }
+        }
+      catch (const std::exception &)
+        {
+          throw std::runtime_error("the saved integrator state is short or "
+                                   "does not have this model's " +
+                                   std::to_string(n) + " DoFs");
+        }
+      for (auto &l : multiplier)
+        for (unsigned int k = 0; k < 3; ++k)
+          in.read(reinterpret_cast<char *>(&l[k]), sizeof(double));
+      if (!in)
+        throw std::runtime_error("the saved integrator state is short");
+      n_step  = header[0];
+      pending = header[1] != 0;
     }
 
     double

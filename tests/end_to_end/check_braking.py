@@ -17,6 +17,10 @@ Runs build/squeal on the coarse TriboBrake for 6 ms and checks:
 - the contact history is read by squeal-tribology (damage per node);
 - the matrix-free stiffness product gives the same run as the sparse one
   (forces to 1e-6 relative over the first 3 ms);
+- restart: a run killed (SIGKILL) after its first checkpoint and continued
+  with `squeal --resume DIR` writes the same forces.csv and probes.csv (17
+  significant digits) as the uninterrupted run, bit for bit; --resume of a
+  finished run or of nothing is refused;
 - a time step above the stability limit is refused with the limit in the
   message; a second run into the same directory is refused.
 """
@@ -25,6 +29,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
 
 squeal, tribology, prm, work = sys.argv[1:5]
@@ -120,6 +125,37 @@ f2 = table(os.path.join(mf, "forces.csv"))
 diff = max(abs(float(a["normal_force_N"]) - float(b["normal_force_N"]))
            for a, b in zip(forces, f2) if float(a["time_s"]) <= 3e-3)
 check("matrix-free run = sparse run (1e-6 of the load)", diff <= 1e-6 * load, f"diff {diff}")
+
+# Restart: kill a run right after its first checkpoint, resume it.
+killed = os.path.abspath("killed")
+for d in (killed, killed + ".partial"):
+    shutil.rmtree(d, ignore_errors=True)
+with open("killed.prm", "w") as f:
+    f.write(f"include {prm}\nsubsection Transient\n  set Checkpoint interval = 1000\nend\n"
+            f"subsection Output\n  set Directory = {killed}\nend\n")
+state = os.path.join(killed + ".partial", "checkpoint", "state.bin")
+proc = subprocess.Popen([squeal, "killed.prm"], stdout=subprocess.DEVNULL,
+                        stderr=subprocess.DEVNULL)
+while proc.poll() is None and not os.path.exists(state):
+    time.sleep(0.002)
+proc.kill()
+proc.wait()
+check("a run is killed after its first checkpoint",
+      os.path.exists(state) and not os.path.exists(killed))
+r = subprocess.run([squeal, "--resume", "killed"], capture_output=True, text=True)
+check("squeal --resume continues it", r.returncode == 0 and "resumed at step" in r.stdout,
+      r.stdout[-1000:] + r.stderr)
+for name in ("forces.csv", "probes.csv"):
+    with open(os.path.join(out, name)) as a, open(os.path.join(killed, name)) as b:
+        check(f"resumed {name} = uninterrupted {name}, bit for bit", a.read() == b.read())
+check("the checkpoint is removed at the end",
+      not os.path.exists(os.path.join(killed, "checkpoint")))
+r = subprocess.run([squeal, "--resume", "killed"], capture_output=True, text=True)
+check("--resume of a finished run is refused",
+      r.returncode != 0 and "holds a finished run" in r.stderr, r.stderr)
+r = subprocess.run([squeal, "--resume", "nowhere"], capture_output=True, text=True)
+check("--resume of nothing is refused",
+      r.returncode != 0 and "no run in progress" in r.stderr, r.stderr)
 
 _, r = run("too_large", "subsection Transient\n  set Time step = 1e-5\nend\n", expect_ok=False)
 check("a time step above the limit is refused",

@@ -287,6 +287,8 @@ namespace squeal
       double       initial_perturbation = 0.; ///< m/s, see help
       /// `matrix-free` (deal.II MatrixFree) or `sparse` (assembled matrix)
       std::string  stiffness_product = "matrix-free";
+      /// steps between checkpoints (squeal --resume); 0: none
+      unsigned int checkpoint_interval = 20000;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };

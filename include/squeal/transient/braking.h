@@ -85,6 +85,21 @@ namespace squeal
       void
       run();
 
+      /**
+       * Continues a run that was stopped (killed, out of time) from the last
+       * checkpoint in Output/Directory.partial/checkpoint (see
+       * Transient/Checkpoint interval): the model is rebuilt from the
+       * parameters, the integrator's state, the samples and the list of
+       * snapshots are read back, and the time loop goes on from the step
+       * after the checkpoint. The result equals an uninterrupted run's bit
+       * for bit (same build, same thread count for the matrix-free product).
+       * @throws std::runtime_error if there is no checkpoint, it is corrupt,
+       * or it was written by a different model (DoFs, pad-face nodes, time
+       * step), besides the errors of run().
+       */
+      void
+      resume();
+
       /** The result (after run()). */
       const BrakingSummary &
       summary() const
@@ -99,6 +114,10 @@ namespace squeal
       void output_results();
       void record_sample();
       void write_snapshot(const std::string &series, unsigned int index);
+      void write_checkpoint(unsigned int next_step, double wall);
+      /// returns the step to continue from and the wall time spent so far
+      std::pair<unsigned int, double> read_checkpoint();
+      void run(bool resuming);
 
       const parameters::AllParameters &prm;
       const dealii::ParameterHandler  &handler;
@@ -127,6 +146,10 @@ namespace squeal
       /// slip, separated, probe u, v, a (3 each)
       std::vector<std::array<double, 17>> samples;
       std::vector<std::pair<double, std::string>> snapshots, frames, faces;
+      unsigned int n_snapshots = 0, n_frames = 0;
+      /// samples and history samples already in the checkpoint files
+      std::size_t saved_samples = 0, saved_history = 0;
+      bool        resuming      = false;
       BrakingSummary                    result;
     };
   } // namespace transient

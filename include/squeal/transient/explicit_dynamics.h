@@ -48,6 +48,7 @@
 #include <squeal/contact/mortar.h>
 
 #include <functional>
+#include <iosfwd>
 #include <vector>
 
 namespace squeal
@@ -203,6 +204,25 @@ namespace squeal
       double kinetic_energy() const;
       /** 1/2 u^T K u [J]. */
       double strain_energy() const;
+
+      /**
+       * Writes the state after the last step() (time step number, the
+       * displacements at t_n and t_{n+1}, the velocities, the acceleration
+       * and the contact multipliers used as the next warm start) to @p out
+       * in deal.II's binary vector format, so that load() into an
+       * integrator built the same way continues bit for bit.
+       */
+      void
+      save(std::ostream &out) const;
+
+      /**
+       * Reads a state written by save().
+       * @throws std::runtime_error if the stream is short or corrupt, or
+       * its sizes (DoFs, slave nodes) or time step differ from this
+       * integrator's.
+       */
+      void
+      load(std::istream &in);
 
     private:
       void solve_contact();
