@@ -102,7 +102,12 @@ main(int argc, char **argv)
                         << ", " << prm.scene.analysis;
               if (prm.scene.analysis == "braking")
                 std::cout << ", " << prm.transient.normal_force << " N, "
-                          << prm.transient.end_time << " s";
+                          << prm.transient.end_time << " s"
+                          << (prm.transient.grid ?
+                                ", a grid of " +
+                                  std::to_string(prm.sweep_points().size()) +
+                                  " runs" :
+                                std::string());
               else if (prm.scene.analysis != "preload")
                 std::cout << ", " << prm.sweep.second.values.size() << " x "
                           << prm.sweep.first.values.size() << " sweep points";
@@ -116,7 +121,15 @@ main(int argc, char **argv)
       // Catch inside the analysis' scope so that its TimerOutput is not
       // destroyed while an exception is in flight.
       std::string failure;
-      if (prm.scene.analysis == "braking")
+      if (prm.scene.analysis == "braking" && prm.transient.grid)
+        {
+          if (resume)
+            throw std::runtime_error(
+              "a braking grid cannot be resumed (its points write no "
+              "checkpoints); run it again");
+          squeal::transient::run_braking_grid(prm, handler, MPI_COMM_WORLD);
+        }
+      else if (prm.scene.analysis == "braking")
         {
           squeal::transient::BrakingAnalysis analysis(prm, handler,
                                                       MPI_COMM_WORLD);

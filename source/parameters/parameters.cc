@@ -213,6 +213,15 @@ namespace squeal
                         "DIRECTORY` continues a killed run from the last one "
                         "and gives the same result as an uninterrupted run. "
                         "0: none.");
+      prm.declare_entry("Grid", grid ? "true" : "false", Patterns::Bool(),
+                        "true: one braking simulation at every point of the "
+                        "Sweep subsection (its two parameters and values, as "
+                        "for the CEA; keep it small), each in its own folder "
+                        "under Output/Directory, and one stability table "
+                        "(stability_table.csv; scripts/plot_braking_grid.py "
+                        "draws stability_map.png) to lay "
+                        "over the CEA's unstable regions. No checkpoints in "
+                        "a grid.");
       prm.leave_subsection();
     }
 
@@ -239,6 +248,7 @@ namespace squeal
       initial_perturbation = prm.get_double("Initial perturbation");
       stiffness_product    = prm.get("Stiffness product");
       checkpoint_interval  = prm.get_integer("Checkpoint interval");
+      grid                 = prm.get_bool("Grid");
       prm.leave_subsection();
       check(history_start < end_time,
             "Transient/History start must be below Transient/End time");
@@ -872,6 +882,18 @@ namespace squeal
       p.alpha               = damping.alpha;
       p.beta                = damping.beta;
       return p;
+    }
+
+    void
+    AllParameters::set_nominal_point(const ScalarPoint &p)
+    {
+      materials.pad.youngs_modulus     = p.E_pad;
+      interface.friction_coefficient   = p.mu;
+      interface.normal_stiffness       = p.interface_stiffness;
+      springs.stiffness                = p.spring_stiffness;
+      materials.support.density        = p.support_density;
+      damping.alpha                    = p.alpha;
+      damping.beta                     = p.beta;
     }
 
     std::vector<ScalarPoint>

@@ -16,6 +16,7 @@
 #include <squeal/output/output_directory.h>
 #include <squeal/transient/braking.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -766,6 +767,16 @@ namespace squeal
             {
               // too short after the ramp: no verdict on growth
             }
+          try
+            {
+              result.modal_growth =
+                fit_modal_growth(vel_after_ramp, rate, t_after_ramp,
+                                 result.dominant_frequency);
+            }
+          catch (const std::exception &)
+            {
+              // too short after the ramp: no verdict on growth
+            }
         }
       // Separation after the ramp and the leading-edge pressure range.
       const double p_mean = tr.normal_force / mortar.slave_area;
@@ -847,10 +858,16 @@ namespace squeal
         std::ofstream out(dir / "summary.csv");
         out << "quantity,value\n"
             << std::setprecision(10) << "verdict," << result.verdict
+            << "\npad_modulus_Pa," << prm.materials.pad.youngs_modulus
+            << "\nfriction_coefficient," << prm.interface.friction_coefficient
             << "\ndominant_frequency_Hz," << result.dominant_frequency
             << "\ngrowth_rate_per_s," << g.growth_rate
             << "\ngrowth_fit_start_s," << g.fit_start
             << "\ngrowth_fit_end_s," << g.fit_end
+            << "\ngrowth_rate_at_dominant_frequency_per_s,"
+            << result.modal_growth.growth_rate
+            << "\nmodal_fit_start_s," << result.modal_growth.fit_start
+            << "\nmodal_fit_end_s," << result.modal_growth.fit_end
             << "\nlimit_cycle_amplitude_m_per_s," << g.final_amplitude
             << "\nlimit_cycle," << (g.limit_cycle ? 1 : 0)
             << "\nseparated," << (result.separated ? 1 : 0)
@@ -886,6 +903,10 @@ namespace squeal
         }
       pcout << "\n  growth rate " << g.growth_rate << " 1/s (fitted "
             << g.fit_start * 1e3 << "-" << g.fit_end * 1e3
+            << " ms; at the dominant frequency alone "
+            << result.modal_growth.growth_rate << " 1/s, "
+            << result.modal_growth.fit_start * 1e3 << "-"
+            << result.modal_growth.fit_end * 1e3
             << " ms), final amplitude " << g.final_amplitude
             << " m/s (probe velocity along the sliding direction)"
             << "\n  pad separated after the ramp: "
@@ -920,6 +941,95 @@ namespace squeal
       output_results();
       fs::remove_all(fs::path(work_dir) / "checkpoint");
       output::publish_directory(work_dir, prm.output.directory);
+      pcout << "Results in " << prm.output.directory << std::endl;
+    }
+
+    void
+    run_braking_grid(const parameters::AllParameters &prm,
+                     const ParameterHandler          &handler,
+                     MPI_Comm                         comm)
+    {
+      ConditionalOStream pcout(std::cout,
+                               Utilities::MPI::this_mpi_process(comm) == 0);
+      const std::string  work =
+        output::partial_directory(prm.output.directory, prm.output.overwrite);
+      output::fresh_directory(work);
+      {
+        std::ofstream out(fs::path(work) / "parameters.prm");
+        handler.print_parameters(out, ParameterHandler::PRM);
+      }
+      const auto points = prm.sweep_points();
+      const auto &first = prm.sweep.first.parameter,
+                 &second = prm.sweep.second.parameter;
+      std::ostringstream table;
+      table << std::setprecision(8) << "point,folder,"
+            << parameters::column_name(first) << ','
+            << parameters::column_name(second)
+            << ",verdict,dominant_frequency_Hz,growth_rate_per_s,"
+               "growth_rate_at_dominant_frequency_per_s,"
+               "limit_cycle_amplitude_m_per_s,separated,"
+               "leading_edge_p_min_over_mean,leading_edge_p_max_over_mean,"
+               "wall_time_s\n";
+      unsigned int n_failed = 0;
+      for (unsigned int i = 0; i < points.size(); ++i)
+        {
+          parameters::AllParameters at = prm;
+          at.set_nominal_point(points[i]);
+          at.transient.grid                = false;
+          at.transient.checkpoint_interval = 0;
+          std::ostringstream name;
+          name << "point_" << std::setw(2) << std::setfill('0') << i;
+          at.output.directory = (fs::path(work) / name.str()).string();
+          at.output.overwrite = true;
+          const double a = points[i].get(first), b = points[i].get(second);
+          pcout << "\n=== Grid point " << i + 1 << " of " << points.size()
+                << ": " << first << " = " << a << ", " << second << " = " << b
+                << " (" << name.str() << ") ===" << std::endl;
+          table << i << ',' << name.str() << ',' << a << ',' << b << ',';
+          std::string failure;
+          BrakingSummary summary;
+          {
+            BrakingAnalysis run(at, handler, comm);
+            try
+              {
+                run.run();
+                summary = run.summary();
+              }
+            catch (const std::exception &e)
+              {
+                failure = e.what();
+              }
+          }
+          if (!failure.empty())
+            {
+              ++n_failed;
+              pcout << "Grid point " << i + 1 << " failed: " << failure
+                    << std::endl;
+              std::string quoted = failure;
+              std::replace(quoted.begin(), quoted.end(), '"', '\'');
+              table << "\"failed: " << quoted << "\",,,,,,,,\n";
+              continue;
+            }
+          table << summary.verdict << ',' << summary.dominant_frequency << ','
+                << summary.growth.growth_rate << ','
+                << summary.modal_growth.growth_rate << ','
+                << summary.growth.final_amplitude << ','
+                << (summary.separated ? 1 : 0) << ','
+                << summary.leading_min_over_mean << ','
+                << summary.leading_max_over_mean << ',' << summary.wall_time
+                << '\n';
+        }
+      if (n_failed == points.size())
+        throw std::runtime_error("every point of the braking grid failed "
+                                 "(see the messages above); nothing written");
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          std::ofstream out(fs::path(work) / "stability_table.csv");
+          out << table.str();
+        }
+      pcout << "\nStability table (" << points.size() << " braking runs):\n"
+            << table.str();
+      output::publish_directory(work, prm.output.directory);
       pcout << "Results in " << prm.output.directory << std::endl;
     }
   } // namespace transient

@@ -46,6 +46,58 @@ namespace squeal
           p[k] = std::norm(out[k]);
         return p;
       }
+
+      // The growth fit of an envelope (g.time, g.envelope filled): final
+      // amplitude, growing / limit-cycle flags, the log-linear fit from the
+      // smallest value to half the final amplitude.
+      void
+      fit_envelope(GrowthFit &g)
+      {
+        const unsigned int n_w = g.envelope.size();
+        const unsigned int last = std::max(1u, n_w / 5);
+        for (unsigned int k = n_w - last; k < n_w; ++k)
+          g.final_amplitude += g.envelope[k] / last;
+        double lo = 1e300, hi = 0.;
+        for (unsigned int k = n_w - last; k < n_w; ++k)
+          {
+            lo = std::min(lo, g.envelope[k]);
+            hi = std::max(hi, g.envelope[k]);
+          }
+        const unsigned int k_min =
+          std::min_element(g.envelope.begin(), g.envelope.end()) -
+          g.envelope.begin();
+        g.growing = g.envelope[k_min] > 0. ?
+                      g.final_amplitude > 10. * g.envelope[k_min] :
+                      g.final_amplitude > 0.;
+        g.limit_cycle = g.growing && hi - lo <= 0.2 * g.final_amplitude;
+        // the fit window
+        unsigned int a = 0, b = n_w - 1;
+        if (g.growing)
+          {
+            a = k_min;
+            b = a;
+            while (b + 1 < n_w && g.envelope[b + 1] < 0.5 * g.final_amplitude)
+              ++b;
+          }
+        if (b < a + 2)
+          b = std::min(n_w - 1, a + 2);
+        double       st = 0, sy = 0, stt = 0, sty = 0;
+        unsigned int m  = 0;
+        for (unsigned int k = a; k <= b; ++k)
+          if (g.envelope[k] > 0.)
+            {
+              const double t = g.time[k], y = std::log(g.envelope[k]);
+              st += t;
+              sy += y;
+              stt += t * t;
+              sty += t * y;
+              ++m;
+            }
+        if (m >= 2)
+          g.growth_rate = (m * sty - st * sy) / (m * stt - st * st);
+        g.fit_start = g.time[a];
+        g.fit_end   = g.time[b];
+      }
     } // namespace
 
     Spectrum
@@ -142,49 +194,41 @@ namespace squeal
           g.time.push_back(t0 + (k + 0.5) * per / rate);
           g.envelope.push_back(m);
         }
-      const unsigned int last = std::max(1u, n_w / 5);
-      for (unsigned int k = n_w - last; k < n_w; ++k)
-        g.final_amplitude += g.envelope[k] / last;
-      double lo = 1e300, hi = 0.;
-      for (unsigned int k = n_w - last; k < n_w; ++k)
+      fit_envelope(g);
+      return g;
+    }
+
+    GrowthFit
+    fit_modal_growth(const std::vector<double> &x, const double rate,
+                     const double t0, const double frequency,
+                     const unsigned int periods)
+    {
+      if (!(frequency > 0. && frequency < rate / 2.))
+        throw std::runtime_error("a modal growth rate needs a frequency "
+                                 "between 0 and half the sampling rate");
+      const unsigned int length =
+        std::max(4., std::round(periods / frequency * rate));
+      const unsigned int hop = std::max(1u, length / 4);
+      if (x.size() < length + 2 * hop)
+        throw std::runtime_error(
+          "the record is too short for a modal growth rate: fewer than 3 "
+          "windows of " + std::to_string(periods) + " periods");
+      const std::vector<double> w = hann(length);
+      const double w_sum = std::accumulate(w.begin(), w.end(), 0.);
+      GrowthFit    g;
+      for (std::size_t start = 0; start + length <= x.size(); start += hop)
         {
-          lo = std::min(lo, g.envelope[k]);
-          hi = std::max(hi, g.envelope[k]);
+          const double mean =
+            std::accumulate(x.begin() + start, x.begin() + start + length, 0.) /
+            length;
+          std::complex<double> c = 0.;
+          for (unsigned int i = 0; i < length; ++i)
+            c += w[i] * (x[start + i] - mean) *
+                 std::polar(1., -2. * pi * frequency * (start + i) / rate);
+          g.time.push_back(t0 + (start + 0.5 * length) / rate);
+          g.envelope.push_back(2. * std::abs(c) / w_sum);
         }
-      const unsigned int k_min =
-        std::min_element(g.envelope.begin(), g.envelope.end()) -
-        g.envelope.begin();
-      g.growing = g.envelope[k_min] > 0. ?
-                    g.final_amplitude > 10. * g.envelope[k_min] :
-                    g.final_amplitude > 0.;
-      g.limit_cycle = g.growing && hi - lo <= 0.2 * g.final_amplitude;
-      // the fit window
-      unsigned int a = 0, b = n_w - 1;
-      if (g.growing)
-        {
-          a = k_min;
-          b = a;
-          while (b + 1 < n_w && g.envelope[b + 1] < 0.5 * g.final_amplitude)
-            ++b;
-        }
-      if (b < a + 2)
-        b = std::min(n_w - 1, a + 2);
-      double       st = 0, sy = 0, stt = 0, sty = 0;
-      unsigned int m  = 0;
-      for (unsigned int k = a; k <= b; ++k)
-        if (g.envelope[k] > 0.)
-          {
-            const double t = g.time[k], y = std::log(g.envelope[k]);
-            st += t;
-            sy += y;
-            stt += t * t;
-            sty += t * y;
-            ++m;
-          }
-      if (m >= 2)
-        g.growth_rate = (m * sty - st * sy) / (m * stt - st * st);
-      g.fit_start = g.time[a];
-      g.fit_end   = g.time[b];
+      fit_envelope(g);
       return g;
     }
   } // namespace transient

@@ -21,6 +21,10 @@ Runs build/squeal on the coarse TriboBrake for 6 ms and checks:
   with `squeal --resume DIR` writes the same forces.csv and probes.csv (17
   significant digits) as the uninterrupted run, bit for bit; --resume of a
   finished run or of nothing is refused;
+- a grid (Transient/Grid) of mu = 0.3, 0.5 writes a folder per point and
+  one stability table; each point runs at its own mu (F_T = mu F_N in full
+  slip) and the mu = 0.5 point equals the single run (forces to 1e-12);
+  scripts/plot_braking_grid.py draws stability_map.png;
 - a time step above the stability limit is refused with the limit in the
   message; a second run into the same directory is refused.
 """
@@ -125,6 +129,31 @@ f2 = table(os.path.join(mf, "forces.csv"))
 diff = max(abs(float(a["normal_force_N"]) - float(b["normal_force_N"]))
            for a, b in zip(forces, f2) if float(a["time_s"]) <= 3e-3)
 check("matrix-free run = sparse run (1e-6 of the load)", diff <= 1e-6 * load, f"diff {diff}")
+
+# A grid of two braking runs.
+grid_plot = os.path.join(here, "..", "..", "scripts", "plot_braking_grid.py")
+grid, _ = run("grid", "subsection Transient\n  set Grid = true\n  set End time = 0.003\nend\n"
+              "subsection Sweep\n  set First parameter = pad modulus\n"
+              "  set First values = 25.1e9\n  set Second parameter = friction coefficient\n"
+              "  set Second values = 0.3, 0.5\nend\n")
+stab = table(os.path.join(grid, "stability_table.csv"))
+check("stability table: a row per point with its parameters",
+      len(stab) == 2 and [float(r["mu"]) for r in stab] == [0.3, 0.5]
+      and all(float(r["E_pad_Pa"]) == 25.1e9 for r in stab)
+      and all(r["verdict"] and not r["verdict"].startswith("failed") for r in stab), str(stab))
+for r, m in zip(stab, (0.3, 0.5)):
+    pf = table(os.path.join(grid, r["folder"], "forces.csv"))
+    slip = [x for x in pf if 2.2e-3 <= float(x["time_s"]) <= 3e-3 and int(x["n_stick"]) == 0
+            and float(x["normal_force_N"]) > 0]
+    e = max(abs(float(x["tangential_force_N"]) - m * float(x["normal_force_N"])) for x in slip)
+    check(f"grid point mu = {m}: F_T = mu F_N in full slip", len(slip) > 10 and e <= 1e-3 * m * load,
+          f"{len(slip)} samples, error {e}")
+pf = table(os.path.join(grid, stab[1]["folder"], "forces.csv"))
+d = max(abs(float(a["normal_force_N"]) - float(b["normal_force_N"])) for a, b in zip(forces, pf))
+check("grid point mu = 0.5 = the single run", len(pf) > 100 and d <= 1e-12 * load, f"diff {d}")
+r = subprocess.run(["/usr/bin/python3", grid_plot, grid], capture_output=True, text=True)
+check("plot_braking_grid.py writes stability_map.png",
+      r.returncode == 0 and os.path.isfile(os.path.join(grid, "stability_map.png")), r.stderr)
 
 # Restart: kill a run right after its first checkpoint, resume it.
 killed = os.path.abspath("killed")

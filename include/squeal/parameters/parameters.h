@@ -289,6 +289,8 @@ namespace squeal
       std::string  stiffness_product = "matrix-free";
       /// steps between checkpoints (squeal --resume); 0: none
       unsigned int checkpoint_interval = 20000;
+      /// run one braking simulation per Sweep point (stability table)
+      bool         grid = false;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };
@@ -335,6 +337,11 @@ namespace squeal
        */
       std::vector<ScalarPoint>
       sweep_points() const;
+
+      /** Sets the scalar parameters of the file (materials, interface,
+       * springs, damping) to @p p: the inverse of nominal_point(). */
+      void
+      set_nominal_point(const ScalarPoint &p);
     };
   } // namespace parameters
 } // namespace squeal

@@ -53,7 +53,10 @@ namespace squeal
       unsigned int n_steps = 0;
       double wall_time = 0.;          ///< s, the time loop
       double dominant_frequency = 0.; ///< Hz, probe acceleration
-      GrowthFit growth;               ///< of the probe acceleration
+      GrowthFit growth;               ///< envelope of the probe velocity
+      /// the probe velocity's amplitude at the dominant frequency alone
+      /// (fit_modal_growth(): one mode where several grow)
+      GrowthFit modal_growth;
       bool   separated = false;       ///< a pad node separated after the ramp
       /// leading-edge nodes, over the spectrum window: min and max pressure
       /// over the nominal mean pressure (normal force / pad area)
@@ -152,6 +155,26 @@ namespace squeal
       bool        resuming      = false;
       BrakingSummary                    result;
     };
+
+    /**
+     * A small grid of braking simulations (Transient/Grid = true): one
+     * BrakingAnalysis at every point of the Sweep subsection (the same two
+     * parameters and values a CEA of the file would sweep), each written to
+     * Output/Directory/point_NN, and one stability table,
+     * Output/Directory/stability_table.csv: per point the two parameters,
+     * the verdict, the dominant frequency [Hz], the growth rates of the
+     * envelope and at the dominant frequency [1/s], the limit-cycle
+     * amplitude [m/s], separation, the leading-edge pressure range over the
+     * mean and the wall time [s]. A point that fails (e.g. contact
+     * multipliers not converging) is recorded as `failed` with its message
+     * and the grid goes on. Checkpoints are off in a grid.
+     * @throws std::runtime_error on an existing output folder without
+     * Output/Overwrite, or when every point failed.
+     */
+    void
+    run_braking_grid(const parameters::AllParameters &prm,
+                     const dealii::ParameterHandler  &handler,
+                     MPI_Comm                         comm);
   } // namespace transient
 } // namespace squeal
 

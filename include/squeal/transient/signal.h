@@ -73,6 +73,24 @@ namespace squeal
     GrowthFit
     fit_growth(const std::vector<double> &x, double rate, double t0,
                double period);
+
+    /**
+     * The growth rate of one spectral component of @p x (sampled at
+     * @p rate [Hz] from @p t0 [s]): its amplitude at @p frequency [Hz] in
+     * Hann windows of @p periods periods, a quarter window apart (a
+     * short-time Fourier transform evaluated at one frequency; amplitude
+     * 2 |sum w_i x_i exp(-2 pi i f t_i)| / sum w_i, the window's mean
+     * removed), fitted as in fit_growth(); GrowthFit::envelope holds these
+     * amplitudes at the window centres. Where several unstable modes grow at
+     * once the envelope of fit_growth() mixes them; this follows the one at
+     * @p frequency alone, separated from components further away than
+     * about 2 f / @p periods (the Hann main lobe).
+     * @throws std::runtime_error if fewer than 3 windows fit in @p x or
+     * @p frequency is not in (0, rate / 2)
+     */
+    GrowthFit
+    fit_modal_growth(const std::vector<double> &x, double rate, double t0,
+                     double frequency, unsigned int periods = 16);
   } // namespace transient
 } // namespace squeal
 
