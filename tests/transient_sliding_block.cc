@@ -73,7 +73,9 @@ main(int argc, char **argv)
                         f_contact[mortar.master_dofs[l][k]] += w * P[k];
                     }
                 }
-              hold += b.reaction(d.displacement(), f_contact, 3, 0, 0);
+              const dealii::Vector<double> u(d.displacement().begin(),
+                                             d.displacement().end());
+              hold += b.reaction(u, f_contact, 3, 0, 0);
               ++n_avg;
               n_slip_min = std::min(n_slip_min, d.contact_state().n_slip);
             }

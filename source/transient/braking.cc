@@ -102,18 +102,21 @@ namespace squeal
     BrakingAnalysis::setup_system()
     {
       TimerOutput::Scope t(timer, "setup");
-      if (Utilities::MPI::n_mpi_processes(comm) > 1)
-        throw std::runtime_error(
-          "the braking simulation is serial for now (the contact multipliers "
-          "are found on one process); run it without mpirun");
+      const bool serial = Utilities::MPI::n_mpi_processes(comm) == 1;
+      const bool root   = Utilities::MPI::this_mpi_process(comm) == 0;
       // Serial run: the products may use every core (deal.II threads; the
       // program starts with one thread per MPI rank).
-      MultithreadInfo::set_thread_limit();
+      if (serial)
+        MultithreadInfo::set_thread_limit();
+      if (!serial && prm.transient.stiffness_product == "sparse")
+        throw std::runtime_error(
+          "Transient/Stiffness product = sparse is serial (the assembled "
+          "matrix is copied to one process); use matrix-free under mpirun");
       if (resuming)
         {
           work_dir = prm.output.directory + ".partial";
           if (!fs::is_regular_file(fs::path(work_dir) / "checkpoint" /
-                                   "state.bin"))
+                                   "latest"))
             throw std::runtime_error(
               "no checkpoint in '" + work_dir +
               "/checkpoint': a braking run writes one every Transient/"
@@ -123,10 +126,14 @@ namespace squeal
         {
           work_dir = output::partial_directory(prm.output.directory,
                                                prm.output.overwrite);
-          output::fresh_directory(work_dir, "vtu");
-          fs::create_directories(fs::path(work_dir) / "checkpoint");
-          std::ofstream out(fs::path(work_dir) / "parameters.prm");
-          handler.print_parameters(out, ParameterHandler::PRM);
+          if (root)
+            {
+              output::fresh_directory(work_dir, "vtu");
+              fs::create_directories(fs::path(work_dir) / "checkpoint");
+              std::ofstream out(fs::path(work_dir) / "parameters.prm");
+              handler.print_parameters(out, ParameterHandler::PRM);
+            }
+          MPI_Barrier(comm);
         }
       model.setup_and_assemble(pcout);
       for (const auto &line : model.constraints.get_lines())
@@ -135,14 +142,74 @@ namespace squeal
             "the braking simulation needs a conforming mesh (the lumped mass "
             "of hanging nodes is not condensed): set Mesh/Disc refinements "
             "under pad = 0");
-      const Point<3> held =
-        contact::tribobrake_contact_system(model, pattern, stiffness,
-                                           constraints)
-          .second;
       const unsigned int n = model.n_dofs();
+
+      // Every rank holds the whole mesh (parallel::shared::Triangulation):
+      // the support points, the fixed DoFs (the clamped inner face of the
+      // disc; the radial DoF of the support top's centre, the loading arm),
+      // the lumped mass and the mortar operators are built over all cells,
+      // the same on every rank and independent of the DoF numbering.
+      points.assign(n, Point<3>());
+      component.assign(n, 0);
       fixed.assign(n, false);
+      {
+        const auto &fe = model.fe;
+        const auto &unit = fe.get_unit_support_points();
+        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+        std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
+        for (const auto &cell : model.dof_handler.active_cell_iterators())
+          {
+            cell->get_dof_indices(dofs);
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              {
+                points[dofs[i]] =
+                  model.mapping.transform_unit_to_real_cell(cell, unit[i]);
+                component[dofs[i]] = fe.system_to_component_index(i).first;
+              }
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == geometry::boundary::clamped)
+                {
+                  cell->face(f)->get_dof_indices(face_dofs);
+                  for (const auto i : face_dofs)
+                    fixed[i] = true;
+                }
+          }
+      }
+      const auto &g = prm.geometry;
+      const Point<3> centre(g.pad_radius, 0., g.pad_size + g.support_length);
+      types::global_dof_index held = 0;
+      {
+        // the x component at the nearest support point
+        double best = 1e300;
+        for (const auto &cell : model.dof_handler.active_cell_iterators())
+          for (const unsigned int v : cell->vertex_indices())
+            if (cell->vertex(v).distance(centre) < best)
+              {
+                best = cell->vertex(v).distance(centre);
+                held = cell->vertex_dof_index(v, 0);
+              }
+      }
+      fixed[held] = true;
+      const Point<3> held_point = points[held];
+      AffineConstraints<double> all_fixed;
       for (unsigned int i = 0; i < n; ++i)
-        fixed[i] = constraints.is_constrained(i);
+        if (fixed[i])
+          all_fixed.add_line(i);
+      all_fixed.close();
+      if (serial)
+        {
+          // the assembled matrix with the same fixed DoFs (the preload's
+          // contact system)
+          const Point<3> p = contact::tribobrake_contact_system(
+                               model, pattern, stiffness, constraints)
+                               .second;
+          for (unsigned int i = 0; i < n; ++i)
+            if (fixed[i] != constraints.is_constrained(i) ||
+                p.distance(held_point) > 1e-12)
+              throw std::runtime_error("internal error: the braking run's "
+                                       "fixed DoFs differ from the preload's");
+        }
 
       const double rho_support = prm.nominal_point().support_density;
       mass = lumped_mass(model.dof_handler, model.mapping, [&](const auto &cell) {
@@ -159,9 +226,97 @@ namespace squeal
       sliding = prm.interface.sliding_tangent();
       radial  = Tensor<1, 3>({1., 0., 0.}); // the pad sits on the +x axis
 
+      // The matrix-free product: elasticity per material plus the springs'
+      // diagonal (each spring ties one DoF to the ground), on this rank's
+      // cells.
+      const auto &tr = prm.transient;
+      {
+        const physics::PETScMatrix &ks = model.stiffness_springs;
+        const double scale = prm.nominal_point().spring_stiffness /
+                             model.parts().reference.spring_stiffness;
+        Vector<double> springs(n);
+        for (const auto i : model.locally_owned_dofs)
+          for (auto e = ks.begin(i); e != ks.end(i); ++e)
+            if (e->column() == i && !fixed[i])
+              springs[i] = scale * e->value();
+            else if (e->value() != 0. && !fixed[i])
+              throw std::runtime_error("the support's springs couple two DoFs: "
+                                       "the matrix-free product needs them "
+                                       "grounded");
+        const auto &mat = prm.materials;
+        matrix_free     = std::make_unique<ElasticityOperator>(
+          model.dof_handler, model.mapping, all_fixed,
+          [&mat](const types::material_id id) {
+            const parameters::Material &m = physics::body_material(mat, id);
+            return physics::lame_constants(m.youngs_modulus, m.poisson_ratio);
+          },
+          springs);
+      }
+      const auto layout =
+        std::make_shared<Utilities::MPI::Partitioner>(model.locally_owned_dofs,
+                                                      comm);
+      StiffnessProduct product;
+      if (tr.stiffness_product == "matrix-free")
+        product = [this](DistributedVector &y, const DistributedVector &v) {
+          matrix_free->vmult(y, v);
+        };
+      else
+        {
+          auto in  = std::make_shared<Vector<double>>(n);
+          auto out = std::make_shared<Vector<double>>(n);
+          product  = [this, in, out](DistributedVector       &y,
+                                    const DistributedVector &v) {
+            std::copy(v.begin(), v.end(), in->begin());
+            stiffness.vmult(*out, *in);
+            std::copy(out->begin(), out->end(), y.begin());
+          };
+        }
+      if (serial)
+        {
+          // Both products on one vector: time and agreement.
+          Vector<double> x(n), y_sparse(n), y_free(n);
+          for (unsigned int i = 0; i < n; ++i)
+            x[i] = fixed[i] ? 0. : std::sin(0.37 * i);
+          const auto time_of = [&](const auto &multiply, Vector<double> &y) {
+            const auto t0 = std::chrono::steady_clock::now();
+            for (unsigned int k = 0; k < 10; ++k)
+              multiply(y, x);
+            return std::chrono::duration<double>(
+                     std::chrono::steady_clock::now() - t0)
+                     .count() /
+                   10.;
+          };
+          result.sparse_product = time_of(
+            [&](Vector<double> &y, const Vector<double> &v) {
+              stiffness.vmult(y, v);
+            },
+            y_sparse);
+          result.matrix_free_product = time_of(
+            [&](Vector<double> &y, const Vector<double> &v) {
+              matrix_free->vmult(y, v);
+            },
+            y_free);
+          for (unsigned int i = 0; i < n; ++i)
+            if (fixed[i])
+              y_sparse[i] = 0.;
+          y_free -= y_sparse;
+          const double difference = y_free.l2_norm() / y_sparse.l2_norm();
+          pcout << "Stiffness product: sparse " << result.sparse_product * 1e3
+                << " ms, matrix-free " << result.matrix_free_product * 1e3
+                << " ms (relative difference " << difference << "); using "
+                << tr.stiffness_product << std::endl;
+          if (!(difference < 1e-10))
+            throw std::runtime_error(
+              "the matrix-free stiffness product differs from the assembled "
+              "matrix by " + as_text(difference) + " (relative)");
+        }
+      else
+        pcout << "Stiffness product: matrix-free on "
+              << Utilities::MPI::n_mpi_processes(comm) << " MPI ranks"
+              << std::endl;
+
       // Stability limit and time step.
-      const auto &tr    = prm.transient;
-      const auto  limit = stable_time_step(stiffness, mass, fixed,
+      const auto limit = stable_time_step(product, layout, mass, fixed, points,
                                           prm.damping.beta, tr.beta2);
       ExplicitSettings s;
       s.time_step = tr.time_step > 0. ? tr.time_step :
@@ -180,69 +335,8 @@ namespace squeal
           as_text(limit.omega_max / (2 * numbers::PI)) +
           " Hz with Rayleigh beta); set it at most to the limit, or 0 for " +
           as_text(tr.safety_factor) + " x the limit");
-      // The matrix-free product: elasticity per material plus the springs'
-      // diagonal (each spring ties one DoF to the ground).
-      {
-        const physics::PETScMatrix &ks = model.stiffness_springs;
-        const double scale = prm.nominal_point().spring_stiffness /
-                             model.parts().reference.spring_stiffness;
-        Vector<double> springs(n);
-        for (unsigned int i = 0; i < n; ++i)
-          for (auto e = ks.begin(i); e != ks.end(i); ++e)
-            if (e->column() == i && !fixed[i])
-              springs[i] = scale * e->value();
-            else if (e->value() != 0. && !fixed[i])
-              throw std::runtime_error("the support's springs couple two DoFs: "
-                                       "the matrix-free product needs them "
-                                       "grounded");
-        const auto &mat = prm.materials;
-        matrix_free     = std::make_unique<ElasticityOperator>(
-          model.dof_handler, model.mapping, constraints,
-          [&mat](const types::material_id id) {
-            const parameters::Material &m = physics::body_material(mat, id);
-            return physics::lame_constants(m.youngs_modulus, m.poisson_ratio);
-          },
-          springs);
-        // Both products on one vector: time and agreement.
-        Vector<double> x(n), y_sparse(n), y_free(n);
-        for (unsigned int i = 0; i < n; ++i)
-          x[i] = fixed[i] ? 0. : std::sin(0.37 * i);
-        const auto time_of = [&](const auto &product, Vector<double> &y) {
-          const auto   t0 = std::chrono::steady_clock::now();
-          for (unsigned int k = 0; k < 10; ++k)
-            product(y, x);
-          return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-                   .count() / 10.;
-        };
-        result.sparse_product = time_of(
-          [&](Vector<double> &y, const Vector<double> &v) { stiffness.vmult(y, v); },
-          y_sparse);
-        result.matrix_free_product = time_of(
-          [&](Vector<double> &y, const Vector<double> &v) { matrix_free->vmult(y, v); },
-          y_free);
-        for (unsigned int i = 0; i < n; ++i)
-          if (fixed[i])
-            y_sparse[i] = 0.;
-        y_free -= y_sparse;
-        const double difference = y_free.l2_norm() / y_sparse.l2_norm();
-        pcout << "Stiffness product: sparse " << result.sparse_product * 1e3
-              << " ms, matrix-free " << result.matrix_free_product * 1e3
-              << " ms (relative difference " << difference << "); using "
-              << tr.stiffness_product << std::endl;
-        if (!(difference < 1e-10))
-          throw std::runtime_error(
-            "the matrix-free stiffness product differs from the assembled "
-            "matrix by " + as_text(difference) + " (relative)");
-      }
-      if (tr.stiffness_product == "matrix-free")
-        dynamics = std::make_unique<ExplicitDynamics>(
-          [this](Vector<double> &y, const Vector<double> &v) {
-            matrix_free->vmult(y, v);
-          },
-          n, mass, fixed, s, limit.critical);
-      else
-        dynamics = std::make_unique<ExplicitDynamics>(stiffness, mass, fixed, s,
-                                                      limit.critical);
+      dynamics = std::make_unique<ExplicitDynamics>(product, layout, mass,
+                                                    fixed, s, limit.critical);
       const double omega =
         prm.interface.rotation_sense == "counterclockwise" ?
           tr.angular_velocity :
@@ -294,8 +388,8 @@ namespace squeal
       history.status.assign(n_s, {});
 
       pcout << "Braking: " << n << " DoFs, " << mortar.n_slave()
-            << " pad-face nodes; radial displacement held at (" << held[0]
-            << ", " << held[1] << ", " << held[2] << ") m\n"
+            << " pad-face nodes; radial displacement held at (" << held_point[0]
+            << ", " << held_point[1] << ", " << held_point[2] << ") m\n"
             << "Stability limit " << limit.critical << " s (largest frequency "
             << limit.omega_max / (2 * numbers::PI) << " Hz, "
             << limit.lanczos_steps << " Lanczos steps); time step "
@@ -326,12 +420,20 @@ namespace squeal
       row[5] = c.n_stick;
       row[6] = c.n_slip;
       row[7] = c.n_separated;
+      // the probe's values from the rank that owns them
+      std::array<double, 9> probe{};
       for (unsigned int k = 0; k < 3; ++k)
-        {
-          row[8 + k]  = d.displacement()[probe_dofs[k]];
-          row[11 + k] = d.velocity()[probe_dofs[k]];
-          row[14 + k] = d.acceleration()[probe_dofs[k]];
-        }
+        if (model.locally_owned_dofs.is_element(probe_dofs[k]))
+          {
+            probe[k]     = d.displacement()[probe_dofs[k]];
+            probe[3 + k] = d.velocity()[probe_dofs[k]];
+            probe[6 + k] = d.acceleration()[probe_dofs[k]];
+          }
+      if (Utilities::MPI::n_mpi_processes(comm) > 1)
+        Utilities::MPI::sum(ArrayView<const double>(probe.data(), probe.size()),
+                            comm, ArrayView<double>(probe.data(), probe.size()));
+      for (unsigned int k = 0; k < 9; ++k)
+        row[8 + k] = probe[k];
       samples.push_back(row);
       if (d.time() + 1e-15 >= prm.transient.history_start)
         {
@@ -357,19 +459,25 @@ namespace squeal
       const std::vector<DataComponentInterpretation::DataComponentInterpretation>
         vec(3, DataComponentInterpretation::component_is_part_of_vector);
       {
+        // each rank writes its own cells into one file (MPI I/O)
+        DistributedVector u(model.locally_owned_dofs, model.locally_relevant_dofs,
+                            comm),
+          v(u);
+        u.copy_locally_owned_data_from(d.displacement());
+        v.copy_locally_owned_data_from(d.velocity());
+        u.update_ghost_values();
+        v.update_ghost_values();
         DataOut<3> out;
         out.attach_dof_handler(model.dof_handler);
-        out.add_data_vector(d.displacement(),
-                            std::vector<std::string>(3, "displacement_m"),
+        out.add_data_vector(u, std::vector<std::string>(3, "displacement_m"),
                             DataOut<3>::type_dof_data, vec);
-        out.add_data_vector(d.velocity(),
-                            std::vector<std::string>(3, "velocity_m_per_s"),
+        out.add_data_vector(v, std::vector<std::string>(3, "velocity_m_per_s"),
                             DataOut<3>::type_dof_data, vec);
         const VonMises von_mises(prm);
-        out.add_data_vector(d.displacement(), von_mises);
+        out.add_data_vector(u, von_mises);
         out.build_patches(model.mapping, 1);
-        std::ofstream f(fs::path(work_dir) / "vtu" / name);
-        out.write_vtu(f);
+        out.write_vtu_in_parallel((fs::path(work_dir) / "vtu" / name).string(),
+                                  comm);
       }
       (series == "transient" ? snapshots : frames)
         .emplace_back(d.time(), "vtu/" + name);
@@ -396,10 +504,14 @@ namespace squeal
       face.add_data_vector(state, std::vector<std::string>{"status",
                                                            "slip_velocity_m_per_s",
                                                            "unused"});
-      face.build_patches(model.mapping, 1);
       const std::string face_name = "contact_" + name;
-      std::ofstream     f(fs::path(work_dir) / "vtu" / face_name);
-      face.write_vtu(f);
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          // the whole pad face from the replicated contact state
+          face.build_patches(model.mapping, 1);
+          std::ofstream f(fs::path(work_dir) / "vtu" / face_name);
+          face.write_vtu(f);
+        }
       faces.emplace_back(d.time(), "vtu/" + face_name);
     }
 
@@ -462,33 +574,40 @@ namespace squeal
                                       const double       wall)
     {
       const fs::path dir = fs::path(work_dir) / "checkpoint";
-      const unsigned int n_s = mortar.n_slave();
-      {
-        std::ofstream f(dir / "samples.bin", std::ios::binary | std::ios::app);
-        for (std::size_t i = saved_samples; i < samples.size(); ++i)
-          f.write(reinterpret_cast<const char *>(samples[i].data()),
-                  sizeof(samples[i]));
-        std::ofstream h(dir / "history.bin", std::ios::binary | std::ios::app);
-        for (std::size_t i = saved_history; i < history.time.size(); ++i)
-          {
-            put(h, history.time[i]);
-            for (unsigned int j = 0; j < n_s; ++j)
-              {
-                put(h, history.p_N[j][i]);
-                put(h, history.t_T1[j][i]);
-                put(h, history.t_T2[j][i]);
-                put(h, history.slip_velocity[j][i]);
-                put<std::int32_t>(h, history.status[j][i]);
-              }
-          }
-        if (!f || !h)
-          throw std::runtime_error("could not append to the checkpoint files "
-                                   "in '" + dir.string() + "'");
-      }
+      const unsigned int n_s  = mortar.n_slave();
+      const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+      if (rank == 0)
+        {
+          // every rank holds the same samples; rank 0 keeps them
+          std::ofstream f(dir / "samples.bin", std::ios::binary | std::ios::app);
+          for (std::size_t i = saved_samples; i < samples.size(); ++i)
+            f.write(reinterpret_cast<const char *>(samples[i].data()),
+                    sizeof(samples[i]));
+          std::ofstream h(dir / "history.bin", std::ios::binary | std::ios::app);
+          for (std::size_t i = saved_history; i < history.time.size(); ++i)
+            {
+              put(h, history.time[i]);
+              for (unsigned int j = 0; j < n_s; ++j)
+                {
+                  put(h, history.p_N[j][i]);
+                  put(h, history.t_T1[j][i]);
+                  put(h, history.t_T2[j][i]);
+                  put(h, history.slip_velocity[j][i]);
+                  put<std::int32_t>(h, history.status[j][i]);
+                }
+            }
+          if (!f || !h)
+            throw std::runtime_error("could not append to the checkpoint "
+                                     "files in '" + dir.string() + "'");
+        }
       saved_samples = samples.size();
       saved_history = history.time.size();
+      const auto state_file = [&](const std::uint64_t step) {
+        return dir / ("state." + std::to_string(step) + "." +
+                      std::to_string(rank) + ".bin");
+      };
       {
-        std::ofstream f(dir / "state.bin.tmp", std::ios::binary);
+        std::ofstream f(state_file(next_step), std::ios::binary);
         f.write(checkpoint_tag, sizeof(checkpoint_tag));
         put<std::uint64_t>(f, model.n_dofs());
         put<std::uint64_t>(f, n_s);
@@ -504,16 +623,49 @@ namespace squeal
         dynamics->save(f);
         if (!f)
           throw std::runtime_error("could not write the checkpoint '" +
-                                   (dir / "state.bin.tmp").string() + "'");
+                                   state_file(next_step).string() + "'");
       }
-      fs::rename(dir / "state.bin.tmp", dir / "state.bin");
+      // Every rank's state is complete: only now does `latest` point to it
+      // (through a rename), and the previous states go.
+      MPI_Barrier(comm);
+      if (rank == 0)
+        {
+          {
+            std::ofstream f(dir / "latest.tmp");
+            f << next_step << ' ' << Utilities::MPI::n_mpi_processes(comm)
+              << '\n';
+          }
+          fs::rename(dir / "latest.tmp", dir / "latest");
+        }
+      MPI_Barrier(comm);
+      if (last_checkpoint > 0)
+        fs::remove(state_file(last_checkpoint));
+      last_checkpoint = next_step;
     }
 
     std::pair<unsigned int, double>
     BrakingAnalysis::read_checkpoint()
     {
-      const fs::path dir  = fs::path(work_dir) / "checkpoint";
-      const std::string name = (dir / "state.bin").string();
+      const fs::path dir = fs::path(work_dir) / "checkpoint";
+      std::uint64_t  step = 0;
+      unsigned int   ranks = 0;
+      {
+        std::ifstream latest(dir / "latest");
+        if (!(latest >> step >> ranks))
+          throw std::runtime_error("the checkpoint marker '" +
+                                   (dir / "latest").string() + "' is corrupt");
+      }
+      if (ranks != Utilities::MPI::n_mpi_processes(comm))
+        throw std::runtime_error(
+          "the checkpoint in '" + dir.string() + "' was written by " +
+          std::to_string(ranks) + " MPI rank(s); resume with mpirun -np " +
+          std::to_string(ranks));
+      const std::string name =
+        (dir / ("state." + std::to_string(step) + "." +
+                std::to_string(Utilities::MPI::this_mpi_process(comm)) +
+                ".bin"))
+          .string();
+      last_checkpoint = step;
       std::ifstream f(name, std::ios::binary);
       char tag[sizeof(checkpoint_tag)] = {};
       f.read(tag, sizeof(tag));
@@ -565,7 +717,8 @@ namespace squeal
           if (!fs::exists(path) || fs::file_size(path) < bytes)
             throw std::runtime_error("the checkpoint file '" + path.string() +
                                      "' is shorter than its state says");
-          fs::resize_file(path, bytes);
+          if (Utilities::MPI::this_mpi_process(comm) == 0)
+            fs::resize_file(path, bytes);
         }
       samples.resize(saved_samples);
       {
@@ -626,19 +779,13 @@ namespace squeal
       if (tr.initial_perturbation > 0. && !resuming)
         {
           // the seed: axial velocity in the shape of a (0,3) disc mode
-          std::map<types::global_dof_index, Point<3>> points;
-          DoFTools::map_dofs_to_support_points(model.mapping, model.dof_handler,
-                                               points);
-          const IndexSet z_dofs =
-            DoFTools::extract_dofs(model.dof_handler,
-                                   ComponentMask({false, false, true}));
           const double r_i = prm.geometry.disc_inner_radius,
                        r_o = prm.geometry.disc_outer_radius;
-          for (const auto i : z_dofs)
+          for (unsigned int i = 0; i < model.n_dofs(); ++i)
             {
               const Point<3> &x = points[i];
               const double    r = std::hypot(x[0], x[1]);
-              if (x[2] <= 0. && !fixed[i])
+              if (component[i] == 2 && x[2] <= 0. && !fixed[i])
                 v0[i] = tr.initial_perturbation *
                         std::cos(3. * std::atan2(x[1], x[0])) * (r - r_i) /
                         (r_o - r_i);
@@ -939,8 +1086,13 @@ namespace squeal
       assemble_load();
       solve();
       output_results();
-      fs::remove_all(fs::path(work_dir) / "checkpoint");
-      output::publish_directory(work_dir, prm.output.directory);
+      MPI_Barrier(comm);
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          fs::remove_all(fs::path(work_dir) / "checkpoint");
+          output::publish_directory(work_dir, prm.output.directory);
+        }
+      MPI_Barrier(comm);
       pcout << "Results in " << prm.output.directory << std::endl;
     }
 
@@ -951,13 +1103,16 @@ namespace squeal
     {
       ConditionalOStream pcout(std::cout,
                                Utilities::MPI::this_mpi_process(comm) == 0);
+      const bool         root = Utilities::MPI::this_mpi_process(comm) == 0;
       const std::string  work =
         output::partial_directory(prm.output.directory, prm.output.overwrite);
-      output::fresh_directory(work);
-      {
-        std::ofstream out(fs::path(work) / "parameters.prm");
-        handler.print_parameters(out, ParameterHandler::PRM);
-      }
+      if (root)
+        {
+          output::fresh_directory(work);
+          std::ofstream out(fs::path(work) / "parameters.prm");
+          handler.print_parameters(out, ParameterHandler::PRM);
+        }
+      MPI_Barrier(comm);
       const auto points = prm.sweep_points();
       const auto &first = prm.sweep.first.parameter,
                  &second = prm.sweep.second.parameter;
@@ -1022,14 +1177,16 @@ namespace squeal
       if (n_failed == points.size())
         throw std::runtime_error("every point of the braking grid failed "
                                  "(see the messages above); nothing written");
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
+      if (root)
         {
           std::ofstream out(fs::path(work) / "stability_table.csv");
           out << table.str();
         }
       pcout << "\nStability table (" << points.size() << " braking runs):\n"
             << table.str();
-      output::publish_directory(work, prm.output.directory);
+      if (root)
+        output::publish_directory(work, prm.output.directory);
+      MPI_Barrier(comm);
       pcout << "Results in " << prm.output.directory << std::endl;
     }
   } // namespace transient

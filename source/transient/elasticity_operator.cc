@@ -33,6 +33,8 @@ namespace squeal
       additional.mapping_update_flags = update_gradients | update_JxW_values;
       data.reinit(mapping, dof_handler, constraints, QGauss<1>(degree + 1),
                   additional);
+      data.initialize_dof_vector(in);
+      data.initialize_dof_vector(out);
       cell_lame.resize(data.n_cell_batches());
       for (unsigned int b = 0; b < data.n_cell_batches(); ++b)
         for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(b); ++v)
@@ -45,16 +47,16 @@ namespace squeal
 
     template <int p>
     void
-    ElasticityOperator::apply(Vector<double> &dst, const Vector<double> &src) const
+    ElasticityOperator::apply(VectorType &dst, const VectorType &src) const
     {
       using Worker = std::function<void(const MatrixFree<3, double> &,
-                                        Vector<double> &,
-                                        const Vector<double> &,
+                                        VectorType &,
+                                        const VectorType &,
                                         const std::pair<unsigned int, unsigned int> &)>;
       const Worker worker =
         [this](const MatrixFree<3, double>                &mf,
-               Vector<double>                             &out,
-               const Vector<double>                       &in,
+               VectorType                                 &out,
+               const VectorType                           &in,
                const std::pair<unsigned int, unsigned int> &range) {
           FEEvaluation<3, p, p + 1, 3, double> phi(mf);
           for (unsigned int b = range.first; b < range.second; ++b)
@@ -78,22 +80,38 @@ namespace squeal
     }
 
     void
-    ElasticityOperator::vmult(Vector<double> &dst, const Vector<double> &src) const
+    ElasticityOperator::vmult(VectorType &dst, const VectorType &src) const
     {
+      in.copy_locally_owned_data_from(src);
       switch (degree)
         {
           case 1:
-            apply<1>(dst, src);
+            apply<1>(out, in);
             break;
           case 2:
-            apply<2>(dst, src);
+            apply<2>(out, in);
             break;
           default:
-            apply<3>(dst, src);
+            apply<3>(out, in);
         }
-      if (springs.size() == src.size())
-        for (unsigned int i = 0; i < src.size(); ++i)
-          dst[i] += springs[i] * src[i];
+      const auto &part = *out.get_partitioner();
+      for (unsigned int l = 0; l < part.locally_owned_size(); ++l)
+        {
+          const auto i = part.local_to_global(l);
+          if (springs.size() == part.size())
+            out.local_element(l) += springs[i] * in.local_element(l);
+          dst.local_element(l) = out.local_element(l);
+        }
     }
+
+    void
+    ElasticityOperator::vmult(Vector<double> &dst, const Vector<double> &src) const
+    {
+      std::copy(src.begin(), src.end(), in.begin());
+      VectorType result(out.get_partitioner());
+      vmult(result, in);
+      std::copy(result.begin(), result.begin() + dst.size(), dst.begin());
+    }
+
   } // namespace transient
 } // namespace squeal

@@ -63,18 +63,71 @@ namespace squeal
       // M^-1/2 K M^-1/2 on the free DoFs (zero rows and columns elsewhere).
       struct ScaledStiffness
       {
-        const SparseMatrix<double> &K;
-        Vector<double>              scale; // 1/sqrt(m), 0 on fixed DoFs
-        mutable Vector<double>      tmp;
+        const StiffnessProduct &K;
+        DistributedVector       scale; // 1/sqrt(m), 0 on fixed DoFs
+        mutable DistributedVector tmp;
         void
-        vmult(Vector<double> &dst, const Vector<double> &src) const
+        vmult(DistributedVector &dst, const DistributedVector &src) const
         {
           tmp = src;
           tmp.scale(scale);
-          K.vmult(dst, tmp);
+          K(dst, tmp);
           dst.scale(scale);
         }
       };
+
+      // A value in [-1, 1] from a point and a component: the Lanczos start
+      // vector, independent of the DoF numbering.
+      double
+      hash(const Point<3> &x, const unsigned int c)
+      {
+        const double t = std::sin(12.9898e3 * x[0] + 78.233e3 * x[1] +
+                                  37.719e3 * x[2] + 1.618 * c) *
+                         43758.5453;
+        return 2. * (t - std::floor(t)) - 1.;
+      }
+
+      StableTimeStep
+      lanczos(const ScaledStiffness &A, const DistributedVector &b,
+              const double beta, const double beta2,
+              const unsigned int lanczos_steps)
+      {
+        DistributedVector x(b);
+        x = 0.;
+        // The Ritz values of CG's Lanczos process approach the top of the
+        // spectrum from below; a few dozen steps resolve it to well under
+        // the safety factor a run applies (see benchmarks/transient).
+        double                 lambda_max = 0.;
+        IterationNumberControl control(lanczos_steps, 0.);
+        SolverCG<DistributedVector> cg(control);
+        cg.connect_eigenvalues_slot(
+          [&](const std::vector<double> &ev) {
+            if (!ev.empty())
+              lambda_max = std::max(lambda_max, ev.back());
+          },
+          true);
+        cg.solve(A, x, b, PreconditionIdentity());
+        StableTimeStep s;
+        s.lanczos_steps = control.last_step();
+        s.omega_max     = std::sqrt(lambda_max);
+        const double z  = beta * s.omega_max / 2.;
+        s.critical = std::sqrt(2. / beta2) / s.omega_max *
+                     (std::sqrt(1. + z * z) - z);
+        return s;
+      }
+
+      // dst = K src through serial copies (the SparseMatrix constructors).
+      StiffnessProduct
+      serial_product(const SparseMatrix<double> &K)
+      {
+        auto in  = std::make_shared<Vector<double>>(K.m());
+        auto out = std::make_shared<Vector<double>>(K.m());
+        return [&K, in, out](DistributedVector &dst, const DistributedVector &src) {
+          std::copy(src.begin(), src.end(), in->begin());
+          K.vmult(*out, *in);
+          std::copy(out->begin(), out->end(), dst.begin());
+        };
+      }
     } // namespace
 
     StableTimeStep
@@ -86,35 +139,42 @@ namespace squeal
                      const unsigned int          lanczos_steps)
     {
       const unsigned int n = K.m();
-      ScaledStiffness    A{K, Vector<double>(n), Vector<double>(n)};
-      Vector<double>     b(n), x(n);
-      std::mt19937       random(12345); // deterministic start vector
+      const auto layout = std::make_shared<Utilities::MPI::Partitioner>(n);
+      const StiffnessProduct product = serial_product(K);
+      ScaledStiffness A{product, DistributedVector(layout),
+                        DistributedVector(layout)};
+      DistributedVector b(layout);
+      std::mt19937      random(12345); // deterministic start vector
       std::uniform_real_distribution<double> uniform(-1., 1.);
       for (unsigned int i = 0; i < n; ++i)
         {
           A.scale[i] = fixed[i] ? 0. : 1. / std::sqrt(mass[i]);
           b[i]       = fixed[i] ? 0. : uniform(random);
         }
-      // The Ritz values of CG's Lanczos process approach the top of the
-      // spectrum from below; a few dozen steps resolve it to well under the
-      // safety factor a run applies (see benchmarks/transient).
-      double           lambda_max = 0.;
-      IterationNumberControl control(lanczos_steps, 0.);
-      SolverCG<Vector<double>> cg(control);
-      cg.connect_eigenvalues_slot(
-        [&](const std::vector<double> &ev) {
-          if (!ev.empty())
-            lambda_max = std::max(lambda_max, ev.back());
-        },
-        true);
-      cg.solve(A, x, b, PreconditionIdentity());
-      StableTimeStep s;
-      s.lanczos_steps = control.last_step();
-      s.omega_max     = std::sqrt(lambda_max);
-      const double z  = beta * s.omega_max / 2.;
-      s.critical = std::sqrt(2. / beta2) / s.omega_max *
-                   (std::sqrt(1. + z * z) - z);
-      return s;
+      return lanczos(A, b, beta, beta2, lanczos_steps);
+    }
+
+    StableTimeStep
+    stable_time_step(
+      const StiffnessProduct                                   &K,
+      const std::shared_ptr<const Utilities::MPI::Partitioner> &partitioner,
+      const Vector<double>                                     &mass,
+      const std::vector<bool>                                  &fixed,
+      const std::vector<Point<3>>                              &points,
+      const double                                              beta,
+      const double                                              beta2,
+      const unsigned int                                        lanczos_steps)
+    {
+      ScaledStiffness   A{K, DistributedVector(partitioner),
+                        DistributedVector(partitioner)};
+      DistributedVector b(partitioner);
+      for (unsigned int l = 0; l < partitioner->locally_owned_size(); ++l)
+        {
+          const auto i = partitioner->local_to_global(l);
+          A.scale.local_element(l) = fixed[i] ? 0. : 1. / std::sqrt(mass[i]);
+          b.local_element(l)       = fixed[i] ? 0. : hash(points[i], i % 3);
+        }
+      return lanczos(A, b, beta, beta2, lanczos_steps);
     }
 
     ExplicitDynamics::ExplicitDynamics(const SparseMatrix<double> &K,
@@ -122,23 +182,25 @@ namespace squeal
                                        const std::vector<bool>    &fixed,
                                        const ExplicitSettings     &settings,
                                        const double                dt_critical)
-      : ExplicitDynamics([&K](Vector<double> &d,
-                              const Vector<double> &s) { K.vmult(d, s); },
-                         K.m(), mass, fixed, settings, dt_critical)
+      : ExplicitDynamics(serial_product(K),
+                         std::make_shared<Utilities::MPI::Partitioner>(K.m()),
+                         mass, fixed, settings, dt_critical)
     {}
 
     ExplicitDynamics::ExplicitDynamics(
-      std::function<void(Vector<double> &, const Vector<double> &)> product,
-      const unsigned int                                            n,
-      const Vector<double>                                         &mass,
-      const std::vector<bool>                                      &fixed,
-      const ExplicitSettings                                       &settings,
-      const double                                                  dt_critical)
+      StiffnessProduct                                          product,
+      const std::shared_ptr<const Utilities::MPI::Partitioner> &partitioner,
+      const Vector<double>                                     &mass,
+      const std::vector<bool>                                  &fixed,
+      const ExplicitSettings                                   &settings,
+      const double                                              dt_critical)
       : K(std::move(product))
-      , inverse_mass(n)
+      , layout(partitioner)
+      , inverse_mass(partitioner->size())
       , fixed(fixed)
       , settings(settings)
     {
+      const unsigned int n = partitioner->size();
       std::ostringstream msg;
       if (!(settings.beta2 >= 0.5 && settings.beta2 <= 1.))
         msg << "beta2 = " << settings.beta2 << " is outside [0.5, 1]";
@@ -152,10 +214,19 @@ namespace squeal
                "and damping); choose at most that";
       if (!msg.str().empty())
         throw std::runtime_error(msg.str());
-      for (auto *vec : {&u, &v, &a, &v_pred, &u_next, &work})
-        vec->reinit(n);
+      if (mass.size() != n || fixed.size() != n)
+        throw std::runtime_error("the lumped mass and the fixed flags need "
+                                 "one entry per DoF");
+      reinit_vectors();
       for (unsigned int i = 0; i < n; ++i)
         inverse_mass[i] = fixed[i] ? 0. : 1. / mass[i];
+    }
+
+    void
+    ExplicitDynamics::reinit_vectors()
+    {
+      for (auto *vec : {&u, &v, &a, &v_pred, &u_next, &work})
+        vec->reinit(layout);
     }
 
     void
@@ -165,6 +236,20 @@ namespace squeal
     {
       mortar                 = &m;
       const unsigned int n_s = m.n_slave();
+      {
+        // every interface DoF a ghost of every rank's vectors
+        IndexSet ghosts(layout->size());
+        for (const auto *list : {&m.slave_dofs, &m.master_dofs})
+          for (const auto &d : *list)
+            for (const auto i : d)
+              ghosts.add_index(i);
+        ghosts.add_indices(layout->locally_owned_range());
+        ghosts.compress();
+        layout = std::make_shared<Utilities::MPI::Partitioner>(
+          layout->locally_owned_range(), ghosts,
+          layout->get_mpi_communicator());
+        reinit_vectors();
+      }
       rows.assign(n_s, {});
       delassus.assign(n_s, 0.);
       master_slide.assign(n_s, Tensor<1, 3>());
@@ -201,9 +286,13 @@ namespace squeal
     ExplicitDynamics::initialise(const Vector<double> &u0,
                                  const Vector<double> &v0)
     {
-      u       = u0;
-      v       = v0;
-      v_pred  = v0;
+      for (unsigned int l = 0; l < layout->locally_owned_size(); ++l)
+        {
+          const auto i      = layout->local_to_global(l);
+          u.local_element(l) = u0[i];
+          v.local_element(l) = v0[i];
+        }
+      v_pred  = v;
       a       = 0.;
       n_step  = 0;
       pending = false;
@@ -225,20 +314,25 @@ namespace squeal
       work = u;
       work.add(settings.beta, v_pred);
       K(a, work);
-      const unsigned int n = u.size();
-      const double       c = dt * dt * (settings.beta2 + 0.5);
-      for (unsigned int i = 0; i < n; ++i)
-        if (fixed[i])
-          {
-            a[i]      = 0.;
-            u_next[i] = u[i];
-          }
-        else
-          {
-            a[i] = (f[i] - a[i]) * inverse_mass[i] - settings.alpha * v_pred[i];
-            // u_{n+1} = u_n + dt v_n + dt^2/2 a_n with v_n = v~_n + dt beta2 a_n
-            u_next[i] = u[i] + dt * v_pred[i] + c * a[i];
-          }
+      const double c = dt * dt * (settings.beta2 + 0.5);
+      for (unsigned int l = 0; l < layout->locally_owned_size(); ++l)
+        {
+          const auto i = layout->local_to_global(l);
+          if (fixed[i])
+            {
+              a.local_element(l)      = 0.;
+              u_next.local_element(l) = u.local_element(l);
+            }
+          else
+            {
+              double &ai = a.local_element(l);
+              ai = (f[i] - ai) * inverse_mass[i] -
+                   settings.alpha * v_pred.local_element(l);
+              // u_{n+1} = u_n + dt v_n + dt^2/2 a_n, v_n = v~_n + dt beta2 a_n
+              u_next.local_element(l) = u.local_element(l) +
+                                        dt * v_pred.local_element(l) + c * ai;
+            }
+        }
       if (mortar)
         solve_contact();
       // v_n = v~_n + dt beta2 a_n
@@ -264,7 +358,12 @@ namespace squeal
       const unsigned int n_s = rows.size();
       // R_j(x) = sum_k w_k x_k: weighted motion of the master against the
       // slave node j [m^3 or m^3/s].
-      const auto relative = [&](const unsigned int j, const Vector<double> &x) {
+      // Every rank sees the interface: the owners' values into the ghosts;
+      // then each rank runs the same sweeps on the same numbers, writing
+      // the corrections into its owned entries and its ghost copies alike.
+      u.update_ghost_values();
+      u_next.update_ghost_values();
+      const auto relative = [&](const unsigned int j, const DistributedVector &x) {
         Tensor<1, 3> r;
         for (const auto &[d, w] : rows[j])
           for (unsigned int k = 0; k < 3; ++k)
@@ -384,13 +483,15 @@ namespace squeal
     ExplicitDynamics::save(std::ostream &out) const
     {
       out.write(checkpoint_tag, sizeof(checkpoint_tag));
-      const std::uint64_t header[3] = {n_step, pending ? 1u : 0u,
-                                       multiplier.size()};
+      const std::uint64_t header[5] = {n_step, pending ? 1u : 0u,
+                                       multiplier.size(), layout->size(),
+                                       layout->locally_owned_size()};
       out.write(reinterpret_cast<const char *>(header), sizeof(header));
       out.write(reinterpret_cast<const char *>(&settings.time_step),
                 sizeof(double));
       for (const auto *vec : {&u, &u_next, &v, &v_pred, &a})
-        vec->block_write(out);
+        out.write(reinterpret_cast<const char *>(vec->begin()),
+                  vec->locally_owned_size() * sizeof(double));
       for (const auto &l : multiplier)
         for (unsigned int k = 0; k < 3; ++k)
           out.write(reinterpret_cast<const char *>(&l[k]), sizeof(double));
@@ -405,35 +506,27 @@ namespace squeal
       in.read(tag, sizeof(tag));
       if (!in || std::string(tag) != checkpoint_tag)
         throw std::runtime_error("not a state of squeal's explicit integrator");
-      std::uint64_t header[3];
+      std::uint64_t header[5] = {};
       double        dt = 0.;
       in.read(reinterpret_cast<char *>(header), sizeof(header));
       in.read(reinterpret_cast<char *>(&dt), sizeof(double));
-      if (!in || header[2] != multiplier.size() || dt != settings.time_step)
+      if (!in || header[2] != multiplier.size() || dt != settings.time_step ||
+          header[3] != layout->size() ||
+          header[4] != layout->locally_owned_size())
         {
           std::ostringstream msg;
           msg << "the saved integrator state does not fit this model: "
-              << header[2] << " slave nodes and time step " << dt
-              << " s saved, " << multiplier.size() << " and "
-              << settings.time_step << " s here";
+              << header[2] << " slave nodes, " << header[3] << " DoFs ("
+              << header[4] << " on this rank) and time step " << dt
+              << " s saved, " << multiplier.size() << ", " << layout->size()
+              << " (" << layout->locally_owned_size() << ") and "
+              << settings.time_step << " s here (same mesh and number of "
+              << "MPI ranks needed)";
           throw std::runtime_error(msg.str());
         }
-      const unsigned int n = u.size();
-      try
-        {
-          for (auto *vec : {&u, &u_next, &v, &v_pred, &a})
-            {
-              vec->block_read(in);
-              if (vec->size() != n)
-                throw std::runtime_error("size");
-            }
-        }
-      catch (const std::exception &)
-        {
-          throw std::runtime_error("the saved integrator state is short or "
-                                   "does not have this model's " +
-                                   std::to_string(n) + " DoFs");
-        }
+      for (auto *vec : {&u, &u_next, &v, &v_pred, &a})
+        in.read(reinterpret_cast<char *>(vec->begin()),
+                vec->locally_owned_size() * sizeof(double));
       for (auto &l : multiplier)
         for (unsigned int k = 0; k < 3; ++k)
           in.read(reinterpret_cast<char *>(&l[k]), sizeof(double));
@@ -447,10 +540,13 @@ namespace squeal
     ExplicitDynamics::kinetic_energy() const
     {
       double e = 0.;
-      for (unsigned int i = 0; i < v.size(); ++i)
-        if (inverse_mass[i] > 0.)
-          e += v[i] * v[i] / inverse_mass[i];
-      return e / 2.;
+      for (unsigned int l = 0; l < layout->locally_owned_size(); ++l)
+        {
+          const auto i = layout->local_to_global(l);
+          if (inverse_mass[i] > 0.)
+            e += v.local_element(l) * v.local_element(l) / inverse_mass[i];
+        }
+      return Utilities::MPI::sum(e, layout->get_mpi_communicator()) / 2.;
     }
 
     double

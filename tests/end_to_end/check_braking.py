@@ -17,6 +17,9 @@ Runs build/squeal on the coarse TriboBrake for 6 ms and checks:
 - the contact history is read by squeal-tribology (damage per node);
 - the matrix-free stiffness product gives the same run as the sparse one
   (forces to 1e-6 relative over the first 3 ms);
+- MPI: `mpirun -np 2` (matrix-free) gives the serial matrix-free run's
+  force history within 1e-8 of its largest value, and its probe history;
+  the sparse product is refused under mpirun;
 - restart: a run killed (SIGKILL) after its first checkpoint and continued
   with `squeal --resume DIR` writes the same forces.csv and probes.csv (17
   significant digits) as the uninterrupted run, bit for bit; --resume of a
@@ -52,13 +55,14 @@ def check(name, ok, detail=""):
         n_fail += 1
 
 
-def run(name, extra="", expect_ok=True):
+def run(name, extra="", expect_ok=True, mpi=0):
     out = os.path.abspath(name)
     if expect_ok:
         shutil.rmtree(out, ignore_errors=True)
     with open(name + ".prm", "w") as f:
         f.write(f"include {prm}\n{extra}subsection Output\n  set Directory = {out}\nend\n")
-    r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
+    launcher = ["mpirun", "-np", str(mpi)] if mpi else []
+    r = subprocess.run(launcher + [squeal, name + ".prm"], capture_output=True, text=True)
     if expect_ok and r.returncode != 0:
         print(f"FAILED: {name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
         sys.exit(1)
@@ -130,6 +134,23 @@ diff = max(abs(float(a["normal_force_N"]) - float(b["normal_force_N"]))
            for a, b in zip(forces, f2) if float(a["time_s"]) <= 3e-3)
 check("matrix-free run = sparse run (1e-6 of the load)", diff <= 1e-6 * load, f"diff {diff}")
 
+mf_text = "subsection Transient\n  set Stiffness product = matrix-free\n  set End time = 0.003\nend\n"
+par, _ = run("matrix_free_np2", mf_text, mpi=2)
+f3 = table(os.path.join(par, "forces.csv"))
+for key in ("normal_force_N", "tangential_force_N", "radial_force_N"):
+    scale = max(abs(float(a[key])) for a in f2)
+    d = max(abs(float(a[key]) - float(b[key])) for a, b in zip(f2, f3))
+    check(f"mpirun -np 2 = serial: {key} (1e-8 of its largest value)",
+          len(f3) == len(f2) and d <= 1e-8 * scale, f"diff {d}, scale {scale}")
+p2 = table(os.path.join(mf, "probes.csv"))
+p3 = table(os.path.join(par, "probes.csv"))
+scale = max(abs(float(a["u_z_m"])) for a in p2)
+d = max(abs(float(a["u_z_m"]) - float(b["u_z_m"])) for a, b in zip(p2, p3))
+check("mpirun -np 2 = serial: probe displacement (1e-8)", d <= 1e-8 * scale, f"diff {d}")
+_, r = run("sparse_np2", "", expect_ok=False, mpi=2)
+check("the sparse product is refused under mpirun",
+      r.returncode != 0 and "use matrix-free under mpirun" in r.stderr, r.stderr[-500:])
+
 # A grid of two braking runs.
 grid_plot = os.path.join(here, "..", "..", "scripts", "plot_braking_grid.py")
 grid, _ = run("grid", "subsection Transient\n  set Grid = true\n  set End time = 0.003\nend\n"
@@ -162,7 +183,7 @@ for d in (killed, killed + ".partial"):
 with open("killed.prm", "w") as f:
     f.write(f"include {prm}\nsubsection Transient\n  set Checkpoint interval = 1000\nend\n"
             f"subsection Output\n  set Directory = {killed}\nend\n")
-state = os.path.join(killed + ".partial", "checkpoint", "state.bin")
+state = os.path.join(killed + ".partial", "checkpoint", "latest")
 proc = subprocess.Popen([squeal, "killed.prm"], stdout=subprocess.DEVNULL,
                         stderr=subprocess.DEVNULL)
 while proc.poll() is None and not os.path.exists(state):

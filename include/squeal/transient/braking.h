@@ -17,7 +17,10 @@
  * (explicit_dynamics.h). As in the preload, the radial displacement of the
  * centre of the support's top is held (the loading arm).
  *
- * Serial: the contact multipliers are found on one process.
+ * Under MPI every rank holds the whole (parallel::shared) mesh and the
+ * small interface; the bulk is split among the ranks (matrix-free product on
+ * each rank's cells, distributed vectors) and the contact multipliers are
+ * found redundantly, the same on every rank.
  */
 
 #include <deal.II/base/conditional_ostream.h>
@@ -34,6 +37,7 @@
 #include <squeal/transient/signal.h>
 #include <squeal/tribology/contact_history.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -80,8 +84,8 @@ namespace squeal
        * DIRECTORY.partial, renamed at the end): forces.csv, probes.csv,
        * spectrum.csv, summary.csv, contact_history.h5, transient.pvd,
        * contact.pvd, animation.pvd with their .vtu files, parameters.prm.
-       * @throws std::runtime_error under mpirun with more than one rank, on
-       * an existing output folder without Output/Overwrite, on a time step
+       * @throws std::runtime_error on Stiffness product = sparse under
+       * mpirun with more than one rank, on an existing output folder without Output/Overwrite, on a time step
        * above the stability limit, on a mesh with hanging nodes, or when
        * the contact multipliers do not converge (nothing is renamed then).
        */
@@ -136,6 +140,8 @@ namespace squeal
       dealii::Vector<double>            mass;  ///< lumped [kg]
       dealii::Vector<double>            load;  ///< at the full normal force [N]
       std::vector<bool>                 fixed;
+      std::vector<dealii::Point<3>>     points; ///< support point per DoF
+      std::vector<unsigned int>         component; ///< 0, 1, 2 per DoF
       contact::MortarOperators          mortar;
       std::unique_ptr<ElasticityOperator> matrix_free;
       std::unique_ptr<ExplicitDynamics> dynamics;
@@ -152,6 +158,8 @@ namespace squeal
       unsigned int n_snapshots = 0, n_frames = 0;
       /// samples and history samples already in the checkpoint files
       std::size_t saved_samples = 0, saved_history = 0;
+      /// step of the last checkpoint written or read (0: none)
+      std::uint64_t last_checkpoint = 0;
       bool        resuming      = false;
       BrakingSummary                    result;
     };

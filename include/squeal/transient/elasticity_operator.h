@@ -14,6 +14,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/matrix_free/matrix_free.h>
 
@@ -30,11 +31,15 @@ namespace squeal
     {
     public:
       /**
-       * @param constraints homogeneous Dirichlet constraints only; the
-       * product is zero in constrained rows
+       * Over the locally owned cells of @p dof_handler (any triangulation,
+       * serial or parallel::shared / distributed), with MPI vectors.
+       * @param constraints homogeneous Dirichlet constraints only (at least
+       * for the locally relevant DoFs); the product is zero in constrained
+       * rows
        * @param lame (lambda, mu) [Pa] of a cell's material id
        * @param spring_diagonal n_dofs entries [N/m] added to the diagonal
-       * (discrete springs to the ground); may be empty
+       * (discrete springs to the ground; only the locally owned entries are
+       * read); may be empty
        * @throws std::runtime_error for a degree outside 1-3
        */
       ElasticityOperator(
@@ -45,14 +50,22 @@ namespace squeal
           dealii::types::material_id)>          &lame,
         const dealii::Vector<double>            &spring_diagonal);
 
-      /** dst = K src [N], both n_dofs [m]. */
+      using VectorType = dealii::LinearAlgebra::distributed::Vector<double>;
+
+      /** dst = K src [N] from src [m]: vectors of any layout with this
+       * rank's locally owned DoFs (their ghosts are not touched);
+       * collective under MPI. */
+      void
+      vmult(VectorType &dst, const VectorType &src) const;
+
+      /** The same on whole serial vectors (one process only). */
       void
       vmult(dealii::Vector<double> &dst, const dealii::Vector<double> &src) const;
 
     private:
       template <int degree>
       void
-      apply(dealii::Vector<double> &dst, const dealii::Vector<double> &src) const;
+      apply(VectorType &dst, const VectorType &src) const;
 
       dealii::MatrixFree<3, double> data;
       std::vector<std::pair<dealii::VectorizedArray<double>,
@@ -60,6 +73,8 @@ namespace squeal
                              cell_lame; ///< per cell batch: lambda, mu
       dealii::Vector<double> springs;
       unsigned int           degree;
+      /// the MatrixFree layout's vectors the product works on
+      mutable VectorType in, out;
     };
   } // namespace transient
 } // namespace squeal

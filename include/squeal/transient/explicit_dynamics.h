@@ -39,13 +39,17 @@
  * is solved exactly.
  */
 
+#include <deal.II/base/partitioner.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
 #include <squeal/contact/mortar.h>
+
+#include <memory>
 
 #include <functional>
 #include <iosfwd>
@@ -55,6 +59,17 @@ namespace squeal
 {
   namespace transient
   {
+    /**
+     * The integrator's vectors: deal.II's MPI vector, each rank owning the
+     * DoFs of its cells (the whole vector on one process), with the
+     * interface DoFs as ghosts.
+     */
+    using DistributedVector = dealii::LinearAlgebra::distributed::Vector<double>;
+
+    /** A stiffness product dst = K src on vectors of one partitioner. */
+    using StiffnessProduct =
+      std::function<void(DistributedVector &, const DistributedVector &)>;
+
     /**
      * The lumped (diagonal) mass of an FE_Q^3 field [kg per DoF]: the
      * consistent mass integrated with the Gauss-Lobatto rule on the element's
@@ -103,6 +118,24 @@ namespace squeal
                      double                              beta,
                      double                              beta2,
                      unsigned int                        lanczos_steps = 80);
+
+    /**
+     * The same with the stiffness given as a product on vectors of
+     * @p partitioner (any MPI layout; collective). The Lanczos start vector
+     * is a hash of each DoF's support point and component (@p points,
+     * n_dofs entries), so that it, and the limit, do not depend on the DoF
+     * numbering or the number of ranks.
+     * @param mass, fixed n_dofs entries each (every rank holds all)
+     */
+    StableTimeStep
+    stable_time_step(const StiffnessProduct                                  &K,
+                     const std::shared_ptr<const dealii::Utilities::MPI::Partitioner> &partitioner,
+                     const dealii::Vector<double>                            &mass,
+                     const std::vector<bool>                                 &fixed,
+                     const std::vector<dealii::Point<3>>                     &points,
+                     double                                                   beta,
+                     double                                                   beta2,
+                     unsigned int lanczos_steps = 80);
 
     /** Settings of the integrator. */
     struct ExplicitSettings
@@ -154,19 +187,27 @@ namespace squeal
                        const ExplicitSettings             &settings,
                        double                              dt_critical);
 
-      /** The same with the stiffness given as its product dst = K src
-       * (e.g. ElasticityOperator::vmult); @p n its size. */
+      /**
+       * The same with the stiffness given as its product on vectors of
+       * @p partitioner (e.g. ElasticityOperator::vmult), under MPI each rank
+       * owning its part. @p mass and @p fixed have n_dofs entries on every
+       * rank. Collective over the partitioner's communicator; so are
+       * set_contact(), step(), the energies, save() and load().
+       */
       ExplicitDynamics(
-        std::function<void(dealii::Vector<double> &,
-                           const dealii::Vector<double> &)> stiffness_product,
-        unsigned int                                      n,
-        const dealii::Vector<double>                     &mass,
-        const std::vector<bool>                          &fixed,
-        const ExplicitSettings                           &settings,
-        double                                            dt_critical);
+        StiffnessProduct                                                  stiffness_product,
+        const std::shared_ptr<const dealii::Utilities::MPI::Partitioner> &partitioner,
+        const dealii::Vector<double>                                      &mass,
+        const std::vector<bool>                                           &fixed,
+        const ExplicitSettings                                            &settings,
+        double dt_critical);
 
       /**
-       * Adds frictional contact on @p mortar (kept by reference).
+       * Adds frictional contact on @p mortar (kept by reference; under MPI
+       * every rank holds the whole interface, e.g. built on a
+       * parallel::shared::Triangulation). Its DoFs become ghosts of every
+       * rank's vectors, and every rank solves the (small) Delassus problem
+       * redundantly, in the same order, so the multipliers agree on all.
        * @param master_velocity rigid velocity of a master point [m/s] (the
        * disc's rotation omega e_z x x); empty: at rest
        */
@@ -175,14 +216,15 @@ namespace squeal
                   const std::function<dealii::Tensor<1, 3>(
                     const dealii::Point<3> &)> &master_velocity = {});
 
-      /** Initial displacement [m] and velocity [m/s] at t = 0 (n each). */
+      /** Initial displacement [m] and velocity [m/s] at t = 0 (n_dofs
+       * entries each, every rank; each takes its own). */
       void
       initialise(const dealii::Vector<double> &u0,
                  const dealii::Vector<double> &v0);
 
       /**
        * Completes the state at t_n = n dt under the external force @p f_n
-       * [N] (n entries): the acceleration, the velocity, the contact
+       * [N] (n_dofs entries on every rank): the acceleration, the velocity, the contact
        * multipliers, and the displacement at t_{n+1}. The next call moves to
        * t_{n+1} first.
        * @throws std::runtime_error if projected Gauss-Seidel does not reach
@@ -194,10 +236,17 @@ namespace squeal
 
       double time() const { return n_step * settings.time_step; }
       unsigned int step_number() const { return n_step; }
-      /** u_n [m], v_n [m/s], a_n [m/s^2] at time(). */
-      const dealii::Vector<double> &displacement() const { return u; }
-      const dealii::Vector<double> &velocity() const { return v; }
-      const dealii::Vector<double> &acceleration() const { return a; }
+      /** u_n [m], v_n [m/s], a_n [m/s^2] at time(): the owned entries
+       * (and the interface ghosts of u_n) are current. */
+      const DistributedVector &displacement() const { return u; }
+      const DistributedVector &velocity() const { return v; }
+      const DistributedVector &acceleration() const { return a; }
+      /** The layout of the vectors (with the interface ghosts). */
+      const std::shared_ptr<const dealii::Utilities::MPI::Partitioner> &
+      partitioner() const
+      {
+        return layout;
+      }
       /** The contact multipliers of time() (empty without contact). */
       const ContactStep &contact_state() const { return contact; }
       /** 1/2 v^T M v [J]. */
@@ -208,9 +257,9 @@ namespace squeal
       /**
        * Writes the state after the last step() (time step number, the
        * displacements at t_n and t_{n+1}, the velocities, the acceleration
-       * and the contact multipliers used as the next warm start) to @p out
-       * in deal.II's binary vector format, so that load() into an
-       * integrator built the same way continues bit for bit.
+       * and the contact multipliers used as the next warm start) to @p out:
+       * this rank's owned entries, raw, so that load() into an integrator
+       * built the same way (same ranks) continues bit for bit.
        */
       void
       save(std::ostream &out) const;
@@ -218,7 +267,7 @@ namespace squeal
       /**
        * Reads a state written by save().
        * @throws std::runtime_error if the stream is short or corrupt, or
-       * its sizes (DoFs, slave nodes) or time step differ from this
+       * its sizes (owned DoFs, slave nodes) or time step differ from this
        * integrator's.
        */
       void
@@ -227,10 +276,9 @@ namespace squeal
     private:
       void solve_contact();
 
-      std::function<void(dealii::Vector<double> &,
-                         const dealii::Vector<double> &)>
-                                         K;
-      /// 1 / m per DoF [1/kg], 0 on fixed DoFs
+      StiffnessProduct K;
+      std::shared_ptr<const dealii::Utilities::MPI::Partitioner> layout;
+      /// 1 / m per DoF [1/kg], 0 on fixed DoFs (n_dofs, every rank)
       dealii::Vector<double>             inverse_mass;
       std::vector<bool>                  fixed;
       ExplicitSettings                   settings;
@@ -238,8 +286,12 @@ namespace squeal
 
       unsigned int           n_step  = 0;
       bool                   pending = false; ///< t_n complete, not advanced
-      dealii::Vector<double> u, v, a, v_pred, u_next;
-      mutable dealii::Vector<double> work;
+      DistributedVector      u, v, a, v_pred, u_next;
+      mutable DistributedVector work;
+      /// the serial copies of the SparseMatrix constructor's product
+      mutable dealii::Vector<double> serial_in, serial_out;
+
+      void reinit_vectors();
 
       /// per slave node: (node DoFs, weight w_k [m^2]) of the slave node
       /// (-D_jj) and its master nodes (M_jl)
