@@ -947,12 +947,20 @@ namespace squeal
           result.leading_min_over_mean = p_lo / p_mean;
           result.leading_max_over_mean = p_hi / p_mean;
         }
-      const GrowthFit &g = result.growth;
+      // Unstable: the envelope grew tenfold (then saturated or not), or its
+      // fitted exponential at least doubled it over the fit (a slow growth,
+      // or one from a large seed); stable: it decays, or stays within a
+      // factor of 2.
+      const GrowthFit &g      = result.growth;
+      const double     factor = std::exp(g.growth_rate * (g.fit_end - g.fit_start));
       result.verdict =
-        g.growing ? (g.limit_cycle ? "unstable: limit cycle" :
-                                     "unstable: still growing at End time") :
-                    (g.growth_rate < 0. ? "stable: vibration decays" :
-                                          "stable: no growth");
+        g.growing     ? (g.limit_cycle ? "unstable: limit cycle" :
+                                         "unstable: still growing at End time") :
+        factor >= 2.  ? "unstable: growing slowly (x" +
+                          std::to_string(int(std::round(factor))) +
+                          " over the fit)" :
+        g.growth_rate < 0. ? "stable: vibration decays" :
+                             "stable: no growth";
 
       if (Utilities::MPI::this_mpi_process(comm) != 0)
         return;

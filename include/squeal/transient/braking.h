@@ -65,7 +65,10 @@ namespace squeal
       /// leading-edge nodes, over the spectrum window: min and max pressure
       /// over the nominal mean pressure (normal force / pad area)
       double leading_min_over_mean = 0., leading_max_over_mean = 0.;
-      std::string verdict;            ///< stable / unstable ...
+      /// unstable: limit cycle | still growing at End time | growing slowly
+      /// (the fitted envelope at least doubled); stable: vibration decays |
+      /// no growth
+      std::string verdict;
     };
 
     /** The braking simulation (tutorial shape: setup_system,
