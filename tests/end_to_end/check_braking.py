@@ -39,20 +39,14 @@ import sys
 import time
 import xml.etree.ElementTree as ET
 
+from checks import check, finish
+
 squeal, tribology, prm, work = sys.argv[1:5]
 prm = os.path.abspath(prm)
 here = os.path.dirname(os.path.abspath(__file__))
 plot = os.path.join(here, "..", "..", "scripts", "plot_braking.py")
 os.makedirs(work, exist_ok=True)
 os.chdir(work)
-n_fail = 0
-
-
-def check(name, ok, detail=""):
-    global n_fail
-    print(f"{name}: {'ok' if ok else 'FAILED ' + detail}")
-    if not ok:
-        n_fail += 1
 
 
 def run(name, extra="", expect_ok=True, mpi=0):
@@ -213,5 +207,4 @@ check("a time step above the limit is refused",
 _, r = run("sparse", expect_ok=False)
 check("an existing output directory is refused",
       r.returncode != 0 and "exists" in r.stderr, r.stderr)
-print("all checks passed" if n_fail == 0 else "CHECKS FAILED")
-sys.exit(1 if n_fail else 0)
+finish()

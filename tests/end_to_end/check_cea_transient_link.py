@@ -21,18 +21,12 @@ import shutil
 import subprocess
 import sys
 
+from checks import check, finish
+
 squeal, prm, work = sys.argv[1:4]
 prm = os.path.abspath(prm)
 os.makedirs(work, exist_ok=True)
 os.chdir(work)
-n_fail = 0
-
-
-def check(name, ok, detail=""):
-    global n_fail
-    print(f"{name}: {'ok' if ok else 'FAILED'} {detail}")
-    if not ok:
-        n_fail += 1
 
 
 def run(name, text):
@@ -91,27 +85,26 @@ end
 
 unstable = cea("cea_unstable", 0.5)
 print("CEA unstable eigenvalues (Hz, 1/s):", unstable)
-check("the CEA at mu = 0.5 has an unstable eigenvalue", len(unstable) > 0)
+check("the CEA at mu = 0.5 has an unstable eigenvalue", len(unstable) > 0, str(unstable), True)
 s = braking("braking_unstable", 0.5, 0.010, 0)
 f_t = float(s["dominant_frequency_Hz"])
 rate = float(s["growth_rate_at_dominant_frequency_per_s"])
 print(f"braking: {s['verdict']}, dominant frequency {f_t} Hz, growth rate at it {rate} 1/s")
-check("the braking run grows", s["verdict"].startswith("unstable"), s["verdict"])
+check("the braking run grows", s["verdict"].startswith("unstable"), s["verdict"], True)
 if unstable:
     f_c, re_c = min(unstable, key=lambda e: abs(e[0] - f_t))
     check("dominant frequency within 2 % of the CEA's unstable eigenfrequency",
           abs(f_t - f_c) <= 0.02 * f_c, f"{f_t:.1f} Hz vs {f_c:.1f} Hz "
-          f"({100 * (f_t / f_c - 1):+.2f} %)")
+          f"({100 * (f_t / f_c - 1):+.2f} %)", True)
     check("growth rate within 20 % of the eigenvalue's real part",
           abs(rate - re_c) <= 0.2 * re_c, f"{rate:.1f} 1/s vs {re_c:.1f} 1/s "
-          f"({100 * (rate / re_c - 1):+.1f} %)")
+          f"({100 * (rate / re_c - 1):+.1f} %)", True)
 
 stable = cea("cea_stable", 0.1)
-check("the CEA at mu = 0.1 has no unstable eigenvalue", len(stable) == 0, str(stable))
+check("the CEA at mu = 0.1 has no unstable eigenvalue", len(stable) == 0, str(stable), True)
 s = braking("braking_stable", 0.1, 0.005, 0.01)
 g = float(s["growth_rate_per_s"])
 print(f"braking at mu = 0.1: {s['verdict']}, envelope growth rate {g} 1/s")
 check("the seeded vibration decays at the stable point",
-      g < 0 and s["verdict"].startswith("stable"), f"{s['verdict']}, {g} 1/s")
-print("all checks passed" if n_fail == 0 else "CHECKS FAILED")
-sys.exit(1 if n_fail else 0)
+      g < 0 and s["verdict"].startswith("stable"), f"{s['verdict']}, {g} 1/s", True)
+finish()
