@@ -159,4 +159,19 @@ if worst_f > 1e-3 or worst_re > 2e-2:
 print("mpirun -np 2 reproduces the serial eigenvalues within the reduced "
       "solver's accuracy: ok")
 
+# The error indicator of the first point's modes: a share per body that
+# sums to 1, the same on 2 ranks (each rank estimates its own cells).
+shares = []
+for d in (serial, parallel):
+    with open(os.path.join(d, "mesh_error.csv")) as f:
+        shares.append({r["body"]: float(r["share_of_squared_indicator"])
+                       for r in csv.DictReader(f)})
+    if not os.path.isfile(os.path.join(d, "mesh_error.vtu")):
+        fail("mesh_error.vtu missing")
+if sorted(shares[0]) != ["disc", "pad", "support"] or abs(sum(shares[0].values()) - 1) > 1e-9:
+    fail(f"mesh_error.csv shares {shares[0]}")
+if any(abs(shares[0][b] - shares[1][b]) > 1e-3 for b in shares[0]):
+    fail(f"error indicator shares differ under mpirun: {shares}")
+print(f"error indicator shares {shares[0]}, the same on 2 ranks: ok")
+
 plots(serial)

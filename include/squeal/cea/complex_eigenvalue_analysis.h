@@ -89,6 +89,10 @@ namespace squeal
       write_mode(const physics::PETScVector &re,
                  const physics::PETScVector &im,
                  const std::string &         name) const;
+      /// Kelly's indicator on the first point's modes: mesh_error.vtu and
+      /// the share of each body, printed
+      void
+      write_error_indicator() const;
 
       const parameters::AllParameters &prm;
       const dealii::ParameterHandler & handler;
