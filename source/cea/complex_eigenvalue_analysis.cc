@@ -8,6 +8,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/petsc_vector.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/error_estimator.h>
 
@@ -22,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -86,6 +88,7 @@ namespace squeal
           };
         }
       model.setup_and_assemble(pcout);
+      adapt_mesh();
     }
 
     std::vector<parameters::ScalarPoint>
@@ -419,37 +422,24 @@ namespace squeal
     // squares summed with weight 2 for unstable and 1 for stable modes. The
     // cell values go to mesh_error.vtu; their share per body is printed and
     // written to mesh_error.csv.
-    void
-    ComplexEigenvalueAnalysis::write_error_indicator() const
+    Vector<double>
+    ComplexEigenvalueAnalysis::mode_indicator(
+      const std::vector<eigen::EigenPair> &pairs) const
     {
-      const auto &pt = points.empty() ? nullptr : &points[0];
-      if (pt == nullptr || pt->lambda.empty())
-        return;
-      TimerOutput::Scope t(timer, "error indicator");
       const unsigned int n_cells = model.triangulation.n_active_cells();
       Vector<double>     sum(n_cells);
       physics::PETScVector ghosted(model.locally_owned_dofs,
                                    model.locally_relevant_dofs, comm);
-      for (unsigned int k = 0; k < pt->lambda.size(); ++k)
+      for (const auto &pair : pairs)
         {
-          physics::PETScVector re, im;
-          if (!pt->q.empty())
-            reduced.expand(pt->q[k], re, im);
-          else if (k < pt->full.size())
-            {
-              re = pt->full[k].re;
-              im = pt->full[k].im;
-            }
-          else
-            continue;
-          physics::PETScVector Mx(re);
+          physics::PETScVector re = pair.re, im = pair.im, Mx(pair.re);
           model.mass.vmult(Mx, re);
           double norm2 = re * Mx;
           model.mass.vmult(Mx, im);
           norm2 += im * Mx;
           if (!(norm2 > 0.))
             continue;
-          const double weight = (pt->lambda[k].real() > 0. ? 2. : 1.) / norm2;
+          const double weight = (pair.lambda.real() > 0. ? 2. : 1.) / norm2;
           for (physics::PETScVector *x : {&re, &im})
             {
               model.constraints.distribute(*x);
@@ -464,6 +454,34 @@ namespace squeal
         }
       // each rank estimated its own cells
       Utilities::MPI::sum(sum, comm, sum);
+      return sum;
+    }
+
+    // Where the discretisation error of the modes sits: Kelly's estimator
+    // (the jump of the gradient across faces; Kelly, Gago, Zienkiewicz &
+    // Babuska, IJNME 19, 1983) on the real and imaginary parts of every mode
+    // of the first sweep point, each mode scaled to unit kinetic norm
+    // (re^T M re + im^T M im = 1), the squares summed with weight 2 for
+    // unstable and 1 for stable modes. The cell values go to mesh_error.vtu;
+    // their share per body is printed and written to mesh_error.csv.
+    void
+    ComplexEigenvalueAnalysis::write_error_indicator() const
+    {
+      const auto &pt = points.empty() ? nullptr : &points[0];
+      if (pt == nullptr || pt->lambda.empty())
+        return;
+      TimerOutput::Scope t(timer, "error indicator");
+      std::vector<eigen::EigenPair> pairs;
+      if (!pt->q.empty())
+        for (unsigned int k = 0; k < pt->lambda.size(); ++k)
+          {
+            pairs.emplace_back();
+            pairs.back().lambda = pt->lambda[k];
+            reduced.expand(pt->q[k], pairs.back().re, pairs.back().im);
+          }
+      const Vector<double> sum =
+        mode_indicator(pt->q.empty() ? pt->full : pairs);
+      const unsigned int n_cells = model.triangulation.n_active_cells();
       std::array<double, 3> share{};
       Vector<float> indicator(n_cells), body(n_cells);
       for (const auto &cell : model.triangulation.active_cell_iterators())
@@ -498,6 +516,167 @@ namespace squeal
       data_out.add_data_vector(body, "body");
       data_out.build_patches();
       data_out.write_vtu_in_parallel(work_dir + "/mesh_error.vtu", comm);
+    }
+
+    // Adaptive refinement before the sweep (Mesh/Adaptive cycles): the
+    // first sweep point by the full solver on each mesh, the relative change
+    // of each mode's frequency from the previous mesh (the same mode found
+    // by its shape, see below) printed and written to adaptive_cycles.csv,
+    // then Kelly's indicator on the modes marks Mesh/Refinement fraction of
+    // the cells. The change is not an error estimate: near a lock-in (an
+    // exceptional point, where frequencies move like the square root of a
+    // perturbation) it under-states the error badly
+    // (benchmarks/speed_vs_error), so no tolerance stops the cycles.
+    void
+    ComplexEigenvalueAnalysis::adapt_mesh()
+    {
+      const auto &m = prm.mesh;
+      if (m.adaptive_cycles == 0)
+        return;
+      TimerOutput::Scope t(timer, "adaptive refinement");
+      const auto &es = prm.eigensolver;
+      eigen::BandOptions band{es.f_min, es.f_max, es.target_frequency,
+                              es.tolerance, 40};
+      const parameters::ScalarPoint p0 = prm.sweep_points().front();
+      std::vector<double> f_prev;
+      std::vector<std::vector<std::complex<double>>> prev_shapes;
+      std::vector<dealii::Point<3>> prev_points;
+      std::vector<unsigned int> prev_component;
+      std::ostringstream  table;
+      table << "cycle,cells,dofs,seconds,modes,max_relative_change,"
+               "median_relative_change,frequency_of_max_change_Hz,"
+               "modes_unmatched\n";
+      ConditionalOStream quiet(std::cout, false);
+      for (unsigned int cycle = 0;; ++cycle)
+        {
+          const auto t0    = std::chrono::steady_clock::now();
+          const auto pairs = eigen::solve_full(model.parts(), p0, band, quiet);
+          const double seconds = std::chrono::duration<double>(
+                                   std::chrono::steady_clock::now() - t0)
+                                   .count();
+          std::vector<double> f, d(pairs.size(), -1.), e;
+          for (const auto &pr : pairs)
+            f.push_back(pr.lambda.imag() / (2. * numbers::PI));
+          // The same mode on the previous mesh: the refined mesh keeps the
+          // old support points, so the old mode shapes are compared with the
+          // new ones there (complex MAC); a new mode's partner is the old one
+          // of largest MAC, if that exceeds 0.4 (a member of a doublet, whose
+          // two shapes mix between meshes, has MAC ~0.5 with each old one;
+          // its partner is then either, and the estimate includes the split
+          // of the pair: an over-estimate).
+          std::vector<std::vector<std::complex<double>>> shapes;
+          for (const auto &pr : pairs)
+            {
+              // hanging nodes get their constrained values (the solver
+              // leaves them at zero)
+              physics::PETScVector r = pr.re, i = pr.im;
+              model.constraints.distribute(r);
+              model.constraints.distribute(i);
+              const Vector<double> re(r), im(i);
+              std::vector<std::complex<double>> x(re.size());
+              for (unsigned int i = 0; i < re.size(); ++i)
+                x[i] = {re[i], im[i]};
+              shapes.push_back(std::move(x));
+            }
+          double       f_worst     = 0.;
+          unsigned int n_unmatched = 0;
+          if (!f_prev.empty())
+            {
+              const auto [points, component] = physics::dof_support_points(model);
+              std::map<std::array<long long, 4>, unsigned int> new_index;
+              const auto key = [](const dealii::Point<3> &x, const unsigned int c) {
+                return std::array<long long, 4>{std::llround(x[0] * 1e9),
+                                                std::llround(x[1] * 1e9),
+                                                std::llround(x[2] * 1e9), c};
+              };
+              for (unsigned int i = 0; i < points.size(); ++i)
+                new_index[key(points[i], component[i])] = i;
+              std::vector<std::pair<unsigned int, unsigned int>> common;
+              for (unsigned int i = 0; i < prev_points.size(); ++i)
+                {
+                  const auto it =
+                    new_index.find(key(prev_points[i], prev_component[i]));
+                  if (it != new_index.end())
+                    common.emplace_back(i, it->second);
+                }
+              FullMatrix<double> mac(f.size(), f_prev.size());
+              for (unsigned int k = 0; k < f.size(); ++k)
+                for (unsigned int j = 0; j < f_prev.size(); ++j)
+                  {
+                    std::complex<double> ab = 0.;
+                    double               aa = 0., bb = 0.;
+                    for (const auto &[io, in] : common)
+                      {
+                        const auto &a = shapes[k][in];
+                        const auto &b = prev_shapes[j][io];
+                        ab += std::conj(b) * a;
+                        aa += std::norm(a);
+                        bb += std::norm(b);
+                      }
+                    mac(k, j) = aa > 0. && bb > 0. ? std::norm(ab) / (aa * bb) : 0.;
+                  }
+              const auto best_in_row = [&](const unsigned int k) {
+                unsigned int b = 0;
+                for (unsigned int j = 1; j < f_prev.size(); ++j)
+                  if (mac(k, j) > mac(k, b))
+                    b = j;
+                return b;
+              };
+              for (unsigned int k = 0; k < f.size(); ++k)
+                {
+                  const unsigned int j = best_in_row(k);
+                  if (mac(k, j) < 0.4)
+                    {
+                      ++n_unmatched;
+                      continue;
+                    }
+                  d[k] = std::abs(f[k] - f_prev[j]) / f[k];
+                  if (f[k] > 1.02 * es.f_min && f[k] < 0.98 * es.f_max)
+                    {
+                      e.push_back(d[k]);
+                      if (e.back() >= *std::max_element(e.begin(), e.end()))
+                        f_worst = f[k];
+                    }
+                }
+            }
+          double e_max = -1., e_median = -1.;
+          if (!e.empty())
+            {
+              std::sort(e.begin(), e.end());
+              e_max    = e.back();
+              e_median = e[e.size() / 2];
+            }
+          pcout << "Adaptive cycle " << cycle << ": "
+                << model.triangulation.n_active_cells() << " cells, "
+                << model.n_dofs() << " DoFs, " << f.size()
+                << " modes in the band, full solve " << std::setprecision(3)
+                << seconds << " s";
+          if (e_max >= 0.)
+            pcout << ", change from the previous mesh: largest "
+                  << 100. * e_max << " % (" << f_worst << " Hz), median "
+                  << 100. * e_median << " %"
+                  << (n_unmatched > 0 ? ", " + std::to_string(n_unmatched) +
+                                          " modes without a partner" :
+                                        std::string());
+          pcout << std::setprecision(6) << std::endl;
+          table << cycle << ',' << model.triangulation.n_active_cells() << ','
+                << model.n_dofs() << ',' << seconds << ',' << f.size() << ','
+                << e_max << ',' << e_median << ',' << f_worst << ','
+                << n_unmatched << '\n';
+          if (cycle == m.adaptive_cycles)
+            break;
+          const Vector<double> sum = mode_indicator(pairs);
+          Vector<float>        indicator(sum.size());
+          for (unsigned int c = 0; c < sum.size(); ++c)
+            indicator[c] = std::sqrt(sum[c]);
+          f_prev = f;
+          prev_shapes = std::move(shapes);
+          std::tie(prev_points, prev_component) =
+            physics::dof_support_points(model);
+          model.refine(indicator, m.refinement_fraction, quiet);
+        }
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        std::ofstream(work_dir + "/adaptive_cycles.csv") << table.str();
     }
 
     void

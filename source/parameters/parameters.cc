@@ -326,6 +326,21 @@ namespace squeal
                         Patterns::Integer(0, 4),
                         "Local refinement cycles of the disc cells under the "
                         "pad footprint (hanging nodes are constrained).");
+      prm.declare_entry("Adaptive cycles", std::to_string(adaptive_cycles),
+                        Patterns::Integer(0, 10),
+                        "CEA: refinement cycles before the sweep. Each solves "
+                        "the first sweep point with the full solver, prints "
+                        "its DoFs, time and how far each mode's frequency "
+                        "moved from the previous mesh (adaptive_cycles.csv; "
+                        "a trend, not an error bound), and refines the cells "
+                        "with the largest error indicator (Kelly on the "
+                        "modes, mesh_error.vtu). 0: the mesh as built. The "
+                        "braking simulation needs a conforming mesh and "
+                        "ignores it.");
+      prm.declare_entry("Refinement fraction", str(refinement_fraction),
+                        Patterns::Double(0.01, 1.),
+                        "Fraction of the cells, those with the largest error "
+                        "indicator, refined in each adaptive cycle.");
       prm.leave_subsection();
     }
 
@@ -341,6 +356,8 @@ namespace squeal
       pad_cells_thickness        = prm.get_integer("Pad cells thickness");
       support_cells_length       = prm.get_integer("Support cells length");
       disc_refinements_under_pad = prm.get_integer("Disc refinements under pad");
+      adaptive_cycles            = prm.get_integer("Adaptive cycles");
+      refinement_fraction        = prm.get_double("Refinement fraction");
       prm.leave_subsection();
     }
 

@@ -5,6 +5,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
+#include <deal.II/grid/grid_refinement.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -53,6 +54,27 @@ namespace squeal
                                               m.support;
     }
 
+    std::pair<std::vector<Point<3>>, std::vector<unsigned int>>
+    dof_support_points(const StructuralModel &model)
+    {
+      const auto &fe   = model.fe;
+      const auto &unit = fe.get_unit_support_points();
+      std::vector<Point<3>>     points(model.n_dofs());
+      std::vector<unsigned int> component(model.n_dofs());
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : model.dof_handler.active_cell_iterators())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            {
+              points[dofs[i]] =
+                model.mapping.transform_unit_to_real_cell(cell, unit[i]);
+              component[dofs[i]] = fe.system_to_component_index(i).first;
+            }
+        }
+      return {points, component};
+    }
+
     void
     copy_to_serial(const PETScMatrix    &K,
                    SparsityPattern      &pattern,
@@ -73,9 +95,32 @@ namespace squeal
     void
     StructuralModel::setup_and_assemble(ConditionalOStream &pcout)
     {
-      const bool brake = prm.scene.bodies == "tribobrake";
-      geometry::make_tribobrake_mesh(prm.geometry, prm.mesh, brake,
+      geometry::make_tribobrake_mesh(prm.geometry, prm.mesh,
+                                     prm.scene.bodies == "tribobrake",
                                      triangulation);
+      setup_dofs_and_assemble(pcout);
+    }
+
+    void
+    StructuralModel::refine(const Vector<float> &indicator,
+                            const double         fraction,
+                            ConditionalOStream  &pcout)
+    {
+      if (indicator.size() != triangulation.n_active_cells())
+        throw std::runtime_error(
+          "a refinement indicator needs one value per active cell (" +
+          std::to_string(triangulation.n_active_cells()) + "), got " +
+          std::to_string(indicator.size()));
+      GridRefinement::refine_and_coarsen_fixed_number(triangulation, indicator,
+                                                      fraction, 0.);
+      triangulation.execute_coarsening_and_refinement();
+      setup_dofs_and_assemble(pcout);
+    }
+
+    void
+    StructuralModel::setup_dofs_and_assemble(ConditionalOStream &pcout)
+    {
+      const bool brake = prm.scene.bodies == "tribobrake";
       dof_handler.distribute_dofs(fe);
       locally_owned_dofs = dof_handler.locally_owned_dofs();
       DoFTools::extract_locally_relevant_dofs(dof_handler,

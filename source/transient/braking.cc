@@ -149,32 +149,19 @@ namespace squeal
       // disc; the radial DoF of the support top's centre, the loading arm),
       // the lumped mass and the mortar operators are built over all cells,
       // the same on every rank and independent of the DoF numbering.
-      points.assign(n, Point<3>());
-      component.assign(n, 0);
+      std::tie(points, component) = physics::dof_support_points(model);
       fixed.assign(n, false);
       {
-        const auto &fe = model.fe;
-        const auto &unit = fe.get_unit_support_points();
-        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-        std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
+        std::vector<types::global_dof_index> face_dofs(model.fe.n_dofs_per_face());
         for (const auto &cell : model.dof_handler.active_cell_iterators())
-          {
-            cell->get_dof_indices(dofs);
-            for (unsigned int i = 0; i < dofs.size(); ++i)
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == geometry::boundary::clamped)
               {
-                points[dofs[i]] =
-                  model.mapping.transform_unit_to_real_cell(cell, unit[i]);
-                component[dofs[i]] = fe.system_to_component_index(i).first;
+                cell->face(f)->get_dof_indices(face_dofs);
+                for (const auto i : face_dofs)
+                  fixed[i] = true;
               }
-            for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary() &&
-                  cell->face(f)->boundary_id() == geometry::boundary::clamped)
-                {
-                  cell->face(f)->get_dof_indices(face_dofs);
-                  for (const auto i : face_dofs)
-                    fixed[i] = true;
-                }
-          }
       }
       const auto &g = prm.geometry;
       const Point<3> centre(g.pad_radius, 0., g.pad_size + g.support_length);

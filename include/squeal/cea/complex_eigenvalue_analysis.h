@@ -93,6 +93,12 @@ namespace squeal
       /// the share of each body, printed
       void
       write_error_indicator() const;
+      /// Kelly's indicator of @p pairs, squared and summed per active cell
+      dealii::Vector<double>
+      mode_indicator(const std::vector<eigen::EigenPair> &pairs) const;
+      /// Mesh/Adaptive cycles: refine before the sweep, adaptive_cycles.csv
+      void
+      adapt_mesh();
 
       const parameters::AllParameters &prm;
       const dealii::ParameterHandler & handler;

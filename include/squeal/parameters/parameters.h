@@ -62,6 +62,10 @@ namespace squeal
       unsigned int pad_cells_thickness   = 2;
       unsigned int support_cells_length  = 10; ///< along z; 10 divides 11 spring stations
       unsigned int disc_refinements_under_pad = 0;
+      /// CEA: adaptive refinement cycles before the sweep (0: none)
+      unsigned int adaptive_cycles    = 0;
+      /// CEA: fraction of the cells refined per cycle (largest indicator)
+      double       refinement_fraction = 0.15;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };

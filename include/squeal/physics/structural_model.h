@@ -160,6 +160,18 @@ namespace squeal
       void
       setup_and_assemble(dealii::ConditionalOStream &pcout);
 
+      /**
+       * Refines the cells with the largest @p indicator (one value per
+       * active cell, the same on every rank), @p fraction of them, then
+       * builds the DoFs, constraints and matrix parts again on the new mesh
+       * (as setup_and_assemble() without rebuilding the coarse mesh).
+       * @throws std::runtime_error if @p indicator does not have one entry
+       * per active cell.
+       */
+      void
+      refine(const dealii::Vector<float> &indicator, double fraction,
+             dealii::ConditionalOStream &pcout);
+
       /** The assembled parts, for the eigensolvers. */
       MatrixParts
       parts() const
@@ -211,11 +223,20 @@ namespace squeal
       double constrained_diagonal = 1.; ///< d above [N/m]
 
     private:
+      void setup_dofs_and_assemble(dealii::ConditionalOStream &pcout);
       void
       assemble_elasticity();
       void
       add_springs(dealii::ConditionalOStream &pcout);
     };
+
+    /**
+     * The support point [m] and the component (0, 1, 2) of every DoF of
+     * @p model, from all cells of its mesh (every rank holds the whole
+     * parallel::shared mesh, so every rank gets all n_dofs entries).
+     */
+    std::pair<std::vector<dealii::Point<3>>, std::vector<unsigned int>>
+    dof_support_points(const StructuralModel &model);
 
     /**
      * Copies a (serial, one-process) PETSc matrix into a deal.II sparse

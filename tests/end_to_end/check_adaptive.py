@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""End-to-end check of Mesh/Adaptive cycles (tests/end_to_end/adaptive.prm).
+
+usage: check_adaptive.py SQUEAL PRM WORKDIR
+
+- without cycles the run writes mesh_error.csv (cells and indicator share
+  per body) and no adaptive_cycles.csv;
+- with 2 cycles, adaptive_cycles.csv has the cycles 0, 1, 2 with cells and
+  DoFs growing, the frequency changes from cycle 1 on, and the final mesh
+  (mesh_error.csv) has more cells than the first;
+- the refinement went where the indicator pointed: the body with the
+  largest share of the first mesh's indicator gained the largest fraction of
+  new cells (ties allowed), the one with the smallest share fewer;
+- the modes' frequencies on the final mesh are below those of the first
+  mesh on the whole (refinement relaxes a conforming displacement model: the
+  median of the matched changes is a decrease).
+"""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+
+from checks import check, finish
+
+squeal, prm, work = sys.argv[1:4]
+prm = os.path.abspath(prm)
+os.makedirs(work, exist_ok=True)
+os.chdir(work)
+
+
+def run(name, cycles):
+    out = os.path.abspath(name)
+    shutil.rmtree(out, ignore_errors=True)
+    with open(name + ".prm", "w") as f:
+        f.write(f"include {prm}\nsubsection Mesh\n  set Adaptive cycles = {cycles}\nend\n"
+                f"subsection Output\n  set Directory = {out}\nend\n")
+    r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
+    if r.returncode != 0:
+        print(f"FAILED: {name}: exit {r.returncode}\n{r.stdout[-3000:]}\n{r.stderr}")
+        sys.exit(1)
+    return out, r.stdout
+
+
+def table(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def bodies(out):
+    return {r["body"]: (int(r["cells"]), float(r["share_of_squared_indicator"]))
+            for r in table(os.path.join(out, "mesh_error.csv"))}
+
+
+plain, _ = run("plain", 0)
+b0 = bodies(plain)
+check("no cycles: mesh_error.csv, no adaptive_cycles.csv",
+      set(b0) == {"disc", "pad", "support"}
+      and not os.path.exists(os.path.join(plain, "adaptive_cycles.csv")), str(b0))
+adaptive, log = run("adaptive", 2)
+cycles = table(os.path.join(adaptive, "adaptive_cycles.csv"))
+check("adaptive_cycles.csv: cycles 0, 1, 2 with cells and DoFs growing",
+      [int(r["cycle"]) for r in cycles] == [0, 1, 2]
+      and all(int(a["cells"]) < int(b["cells"]) and int(a["dofs"]) < int(b["dofs"])
+              for a, b in zip(cycles, cycles[1:])), str(cycles))
+check("frequency changes reported from cycle 1 on",
+      float(cycles[0]["max_relative_change"]) < 0
+      and all(float(r["max_relative_change"]) >= 0 for r in cycles[1:])
+      and "change from the previous mesh" in log, log[-1500:])
+b2 = bodies(adaptive)
+gain = {b: b2[b][0] / b0[b][0] for b in b0}
+worst = max(b0, key=lambda b: b0[b][1])
+least = min(b0, key=lambda b: b0[b][1])
+check("the body with the largest indicator share gained the most cells, the "
+      "one with the smallest share fewer",
+      gain[worst] == max(gain.values()) and gain[least] < gain[worst],
+      f"shares {b0}, gains {gain}", True)
+f0 = sorted(float(r["freq_Hz"]) for r in table(os.path.join(plain, "eigenvalues.csv")))
+f2 = sorted(float(r["freq_Hz"]) for r in table(os.path.join(adaptive, "eigenvalues.csv")))
+changes = sorted(min(f2, key=lambda g: abs(g - f)) - f for f in f0 if 1000 < f < 9500)
+check("frequencies move down with refinement (median change < 0)",
+      changes and changes[len(changes) // 2] < 0,
+      f"median change {changes[len(changes) // 2] if changes else None} Hz", True)
+finish()
