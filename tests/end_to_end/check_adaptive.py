@@ -17,11 +17,9 @@ usage: check_adaptive.py SQUEAL PRM WORKDIR
 """
 import csv
 import os
-import shutil
-import subprocess
 import sys
 
-from checks import check, finish
+from checks import check, finish, run_squeal
 
 squeal, prm, work = sys.argv[1:4]
 prm = os.path.abspath(prm)
@@ -30,16 +28,8 @@ os.chdir(work)
 
 
 def run(name, cycles):
-    out = os.path.abspath(name)
-    shutil.rmtree(out, ignore_errors=True)
-    with open(name + ".prm", "w") as f:
-        f.write(f"include {prm}\nsubsection Mesh\n  set Adaptive cycles = {cycles}\nend\n"
-                f"subsection Output\n  set Directory = {out}\nend\n")
-    r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
-    if r.returncode != 0:
-        print(f"FAILED: {name}: exit {r.returncode}\n{r.stdout[-3000:]}\n{r.stderr}")
-        sys.exit(1)
-    return out, r.stdout
+    return run_squeal(squeal, prm, name,
+                      f"subsection Mesh\n  set Adaptive cycles = {cycles}\nend\n")
 
 
 def table(path):

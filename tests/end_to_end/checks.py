@@ -1,4 +1,8 @@
-"""Shared by the end-to-end checks: named pass/fail lines and the exit code."""
+"""Shared by the end-to-end checks: named pass/fail lines, the exit code,
+and running squeal on a parameter file that includes a base one."""
+import os
+import shutil
+import subprocess
 import sys
 
 _failures = []
@@ -18,3 +22,19 @@ def finish():
     print("all checks passed" if not _failures else
           f"CHECKS FAILED: {', '.join(_failures)}")
     sys.exit(1 if _failures else 0)
+
+
+def run_squeal(squeal, base_prm, name, extra=""):
+    """Writes NAME.prm (include BASE_PRM, then EXTRA, then Output/Directory =
+    NAME), runs squeal on it into a fresh folder NAME; stops the check with
+    the output on a non-zero exit. Returns (folder, standard output)."""
+    out = os.path.abspath(name)
+    shutil.rmtree(out, ignore_errors=True)
+    with open(name + ".prm", "w") as f:
+        f.write(f"include {base_prm}\n{extra}subsection Output\n"
+                f"  set Directory = {out}\nend\n")
+    r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
+    if r.returncode != 0:
+        print(f"FAILED: {name}: exit {r.returncode}\n{r.stdout[-3000:]}\n{r.stderr}")
+        sys.exit(1)
+    return out, r.stdout
