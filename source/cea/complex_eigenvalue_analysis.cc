@@ -554,7 +554,7 @@ namespace squeal
           const double seconds = std::chrono::duration<double>(
                                    std::chrono::steady_clock::now() - t0)
                                    .count();
-          std::vector<double> f, d(pairs.size(), -1.), e;
+          std::vector<double> f, e;
           for (const auto &pr : pairs)
             f.push_back(pr.lambda.imag() / (2. * numbers::PI));
           // The same mode on the previous mesh: the refined mesh keeps the
@@ -580,9 +580,11 @@ namespace squeal
             }
           double       f_worst     = 0.;
           unsigned int n_unmatched = 0;
+          // this mesh's support points: the new side of the comparison now,
+          // the old side after the refinement
+          auto [points, component] = physics::dof_support_points(model);
           if (!f_prev.empty())
             {
-              const auto [points, component] = physics::dof_support_points(model);
               std::map<std::array<long long, 4>, unsigned int> new_index;
               const auto key = [](const dealii::Point<3> &x, const unsigned int c) {
                 return std::array<long long, 4>{std::llround(x[0] * 1e9),
@@ -630,10 +632,9 @@ namespace squeal
                       ++n_unmatched;
                       continue;
                     }
-                  d[k] = std::abs(f[k] - f_prev[j]) / f[k];
                   if (f[k] > 1.02 * es.f_min && f[k] < 0.98 * es.f_max)
                     {
-                      e.push_back(d[k]);
+                      e.push_back(std::abs(f[k] - f_prev[j]) / f[k]);
                       if (e.back() >= *std::max_element(e.begin(), e.end()))
                         f_worst = f[k];
                     }
@@ -671,8 +672,8 @@ namespace squeal
             indicator[c] = std::sqrt(sum[c]);
           f_prev = f;
           prev_shapes = std::move(shapes);
-          std::tie(prev_points, prev_component) =
-            physics::dof_support_points(model);
+          prev_points    = std::move(points);
+          prev_component = std::move(component);
           model.refine(indicator, m.refinement_fraction, quiet);
         }
       if (Utilities::MPI::this_mpi_process(comm) == 0)

@@ -179,24 +179,27 @@ namespace squeal
       }
       fixed[held] = true;
       const Point<3> held_point = points[held];
-      AffineConstraints<double> all_fixed;
-      for (unsigned int i = 0; i < n; ++i)
-        if (fixed[i])
-          all_fixed.add_line(i);
-      all_fixed.close();
       if (serial)
         {
           // the assembled matrix with the same fixed DoFs (the preload's
           // contact system)
+          AffineConstraints<double> contact_constraints;
           const Point<3> p = contact::tribobrake_contact_system(
-                               model, pattern, stiffness, constraints)
+                               model, pattern, stiffness, contact_constraints)
                                .second;
           for (unsigned int i = 0; i < n; ++i)
-            if (fixed[i] != constraints.is_constrained(i) ||
+            if (fixed[i] != contact_constraints.is_constrained(i) ||
                 p.distance(held_point) > 1e-12)
               throw std::runtime_error("internal error: the braking run's "
                                        "fixed DoFs differ from the preload's");
         }
+      // the fixed DoFs as constraints, the same on every rank: for the
+      // matrix-free product and the load
+      constraints.clear();
+      for (unsigned int i = 0; i < n; ++i)
+        if (fixed[i])
+          constraints.add_line(i);
+      constraints.close();
 
       const double rho_support = prm.nominal_point().support_density;
       mass = lumped_mass(model.dof_handler, model.mapping, [&](const auto &cell) {
@@ -232,7 +235,7 @@ namespace squeal
                                        "grounded");
         const auto &mat = prm.materials;
         matrix_free     = std::make_unique<ElasticityOperator>(
-          model.dof_handler, model.mapping, all_fixed,
+          model.dof_handler, model.mapping, constraints,
           [&mat](const types::material_id id) {
             const parameters::Material &m = physics::body_material(mat, id);
             return physics::lame_constants(m.youngs_modulus, m.poisson_ratio);
@@ -242,29 +245,34 @@ namespace squeal
       const auto layout =
         std::make_shared<Utilities::MPI::Partitioner>(model.locally_owned_dofs,
                                                       comm);
-      StiffnessProduct product;
-      if (tr.stiffness_product == "matrix-free")
-        product = [this](DistributedVector &y, const DistributedVector &v) {
-          matrix_free->vmult(y, v);
-        };
-      else
+      // Both products as the time loop calls them (the sparse one through
+      // serial copies, serial runs only).
+      const StiffnessProduct free_product = [this](DistributedVector       &y,
+                                                   const DistributedVector &v) {
+        matrix_free->vmult(y, v);
+      };
+      StiffnessProduct sparse_product;
+      if (serial)
         {
           auto in  = std::make_shared<Vector<double>>(n);
           auto out = std::make_shared<Vector<double>>(n);
-          product  = [this, in, out](DistributedVector       &y,
-                                    const DistributedVector &v) {
+          sparse_product = [this, in, out](DistributedVector       &y,
+                                           const DistributedVector &v) {
             std::copy(v.begin(), v.end(), in->begin());
             stiffness.vmult(*out, *in);
             std::copy(out->begin(), out->end(), y.begin());
           };
         }
+      const StiffnessProduct product =
+        tr.stiffness_product == "matrix-free" ? free_product : sparse_product;
       if (serial)
         {
           // Both products on one vector: time and agreement.
-          Vector<double> x(n), y_sparse(n), y_free(n);
+          DistributedVector x(layout), y_sparse(layout), y_free(layout);
           for (unsigned int i = 0; i < n; ++i)
             x[i] = fixed[i] ? 0. : std::sin(0.37 * i);
-          const auto time_of = [&](const auto &multiply, Vector<double> &y) {
+          const auto time_of = [&](const StiffnessProduct &multiply,
+                                   DistributedVector      &y) {
             const auto t0 = std::chrono::steady_clock::now();
             for (unsigned int k = 0; k < 10; ++k)
               multiply(y, x);
@@ -273,16 +281,8 @@ namespace squeal
                      .count() /
                    10.;
           };
-          result.sparse_product = time_of(
-            [&](Vector<double> &y, const Vector<double> &v) {
-              stiffness.vmult(y, v);
-            },
-            y_sparse);
-          result.matrix_free_product = time_of(
-            [&](Vector<double> &y, const Vector<double> &v) {
-              matrix_free->vmult(y, v);
-            },
-            y_free);
+          result.sparse_product      = time_of(sparse_product, y_sparse);
+          result.matrix_free_product = time_of(free_product, y_free);
           for (unsigned int i = 0; i < n; ++i)
             if (fixed[i])
               y_sparse[i] = 0.;

@@ -104,14 +104,5 @@ namespace squeal
         }
     }
 
-    void
-    ElasticityOperator::vmult(Vector<double> &dst, const Vector<double> &src) const
-    {
-      std::copy(src.begin(), src.end(), in.begin());
-      VectorType result(out.get_partitioner());
-      vmult(result, in);
-      std::copy(result.begin(), result.begin() + dst.size(), dst.begin());
-    }
-
   } // namespace transient
 } // namespace squeal

@@ -58,10 +58,6 @@ namespace squeal
       void
       vmult(VectorType &dst, const VectorType &src) const;
 
-      /** The same on whole serial vectors (one process only). */
-      void
-      vmult(dealii::Vector<double> &dst, const dealii::Vector<double> &src) const;
-
     private:
       template <int degree>
       void
