@@ -56,3 +56,57 @@ def disc_mesh(degree, around, radial, thick):
   set Disc cells thickness = {thick}
 end
 """
+
+
+# verification.md A3: (name, Hz, multiplicity)
+A3 = [("(0,0)", 1629.8, 1), ("(0,1)", 1638.5, 2), ("(0,2)", 1839.8, 2),
+      ("(0,3)", 2557.6, 2), ("(0,4)", 3853.5, 2), ("(0,5)", 5611.7, 2),
+      ("(0,6)", 7731.5, 2), ("(0,7)", 10146.9, 2), ("(0,8)", 12813.0, 2),
+      ("(0,9)", 15696.4, 2), ("(0,10)", 18770.4, 2), ("(1,0)", 9669.8, 1),
+      ("(1,1)", 9924.2, 2), ("(1,2)", 10703.9, 2), ("(1,3)", 12041.6, 2),
+      ("(1,4)", 13954.6, 2), ("(1,5)", 16421.6, 2), ("(1,6)", 19380.9, 2),
+      ("in-plane n=0", 6303.3, 1), ("in-plane n=1", 9515.5, 2),
+      ("in-plane n=2", 14503.4, 2), ("in-plane n=3", 17988.6, 2)]
+REFERENCE = sorted(f for _, f, m in A3 for _ in range(m))
+
+
+def disc_errors(freqs):
+    """Relative errors of the computed disc frequencies FREQS [Hz] against
+    REFERENCE: the k-th lowest against the k-th of the A3 table expanded by
+    multiplicity, over the 41 listed modes below 20 kHz; a run with fewer
+    modes gets one more entry of 1.0 (a missed mode counts as 100 %)."""
+    freqs = sorted(freqs)
+    n = min(len(freqs), len(REFERENCE))
+    errors = [abs(freqs[k] - REFERENCE[k]) / REFERENCE[k] for k in range(n)]
+    if len(freqs) < len(REFERENCE):
+        errors.append(1.0)
+    return errors
+
+
+def run_disc(squeal, work, degree, around, radial, thick, max_frequency):
+    """One squeal run of the disc alone (full solver, friction and damping
+    off) on a uniform mesh, solved to MAX_FREQUENCY [Hz]; returns a dict with
+    the mesh name, degree, DoFs, wall seconds, largest and median error
+    (disc_errors) and the number of modes found."""
+    import os
+    import statistics
+    name = f"d{degree}_{around}x{radial}x{thick}"
+    out = os.path.join(work, name)
+    stdout, seconds = run_squeal(squeal, """subsection Scene
+  set Bodies = disc
+end
+""" + disc_mesh(degree, around, radial, thick) + f"""subsection Eigensolver
+  set Method = full
+  set Minimum frequency = 900
+  set Maximum frequency = {max_frequency}
+end
+subsection Damping
+  set Alpha = 0
+  set Beta = 0
+end
+""" + single_point_sweep("friction coefficient", 0, "pad modulus", 25e9), out)
+    dofs, modes = read_run(stdout, out)
+    errors = disc_errors([f for f, _ in modes])
+    return dict(mesh=name, degree=degree, dofs=dofs, seconds=round(seconds, 1),
+                max_error=max(errors), median_error=statistics.median(errors),
+                modes=len(modes))

@@ -16,7 +16,6 @@ disc_pareto.png (error against wall time) and prints a Markdown table.
 """
 import csv
 import os
-import statistics
 import sys
 
 import matplotlib
@@ -24,23 +23,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from common import disc_mesh, read_run, run_squeal, single_point_sweep  # noqa: E402
+from common import run_disc  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
 squeal = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build", "squeal")
 work = sys.argv[2] if len(sys.argv) > 2 else "/tmp/squeal_speed_vs_error"
 
-# verification.md A3: (name, Hz, multiplicity)
-A3 = [("(0,0)", 1629.8, 1), ("(0,1)", 1638.5, 2), ("(0,2)", 1839.8, 2),
-      ("(0,3)", 2557.6, 2), ("(0,4)", 3853.5, 2), ("(0,5)", 5611.7, 2),
-      ("(0,6)", 7731.5, 2), ("(0,7)", 10146.9, 2), ("(0,8)", 12813.0, 2),
-      ("(0,9)", 15696.4, 2), ("(0,10)", 18770.4, 2), ("(1,0)", 9669.8, 1),
-      ("(1,1)", 9924.2, 2), ("(1,2)", 10703.9, 2), ("(1,3)", 12041.6, 2),
-      ("(1,4)", 13954.6, 2), ("(1,5)", 16421.6, 2), ("(1,6)", 19380.9, 2),
-      ("in-plane n=0", 6303.3, 1), ("in-plane n=1", 9515.5, 2),
-      ("in-plane n=2", 14503.4, 2), ("in-plane n=3", 17988.6, 2)]
-REFERENCE = sorted(f for _, f, m in A3 for _ in range(m))
 
 # (degree, cells around, radial, through the thickness)
 MESHES = [(1, 48, 6, 2), (1, 64, 10, 2), (1, 96, 16, 3), (1, 128, 20, 4),
@@ -49,30 +38,7 @@ MESHES = [(1, 48, 6, 2), (1, 64, 10, 2), (1, 96, 16, 3), (1, 128, 20, 4),
 
 
 def run(degree, around, radial, thick):
-    name = f"d{degree}_{around}x{radial}x{thick}"
-    out = os.path.join(work, name)
-    stdout, seconds = run_squeal(squeal, f"""subsection Scene
-  set Bodies = disc
-end
-""" + disc_mesh(degree, around, radial, thick) + f"""subsection Eigensolver
-  set Method = full
-  set Minimum frequency = 900
-  set Maximum frequency = 40000
-end
-subsection Damping
-  set Alpha = 0
-  set Beta = 0
-end
-""" + single_point_sweep("friction coefficient", 0, "pad modulus", 25e9), out)
-    dofs, modes = read_run(stdout, out)
-    freqs = [f for f, _ in modes]
-    n = min(len(freqs), len(REFERENCE))
-    errors = [abs(freqs[k] - REFERENCE[k]) / REFERENCE[k] for k in range(n)]
-    if len(freqs) < len(REFERENCE):
-        errors.append(1.0)  # a missed mode counts as 100 %
-    return dict(mesh=name, degree=degree, dofs=dofs, seconds=round(seconds, 1),
-                max_error=max(errors), median_error=statistics.median(errors),
-                modes=len(freqs))
+    return run_disc(squeal, work, degree, around, radial, thick, 40000)
 
 
 def main():

@@ -29,15 +29,67 @@ namespace squeal
 
     namespace
     {
-      // The (x, y) outline of a face at z = 0, counter-clockwise.
-      Polygon
-      face_outline(const typename DoFHandler<3>::face_iterator &face)
+      // The points a line's hanging children add between its two vertices,
+      // in the order from vertex(0) to vertex(1).
+      void
+      hanging_points(const typename DoFHandler<3>::line_iterator &line,
+                     std::vector<Point<3>> &                       out)
       {
-        // deal.II numbers quadrilateral vertices lexicographically.
+        if (!line->has_children())
+          return;
+        hanging_points(line->child(0), out);
+        out.push_back(line->child(0)->vertex(1));
+        hanging_points(line->child(1), out);
+      }
+
+      // The (x, y) outline of a face at z = 0, counter-clockwise. With
+      // @p follow_hanging, the vertices that refined neighbours hang on its
+      // edges are included: on the curved disc face a coarse face's chord
+      // and its refined neighbours' chords would otherwise leave slivers
+      // uncovered (or covered twice) beside every hanging edge. Such an
+      // outline may have a shallow dent, so it is star-shaped about its
+      // centroid but not always convex (see fan()).
+      Polygon
+      face_outline(const typename DoFHandler<3>::face_iterator &face,
+                   const bool                                  follow_hanging)
+      {
+        // deal.II numbers quadrilateral vertices lexicographically; the
+        // outline 0 -> 1 -> 3 -> 2 runs along lines 2, 1, 3 (backwards) and
+        // 0 (backwards).
+        const std::array<std::pair<unsigned int, bool>, 4> edges{
+          {{2u, true}, {1u, true}, {3u, false}, {0u, false}}};
+        const std::array<unsigned int, 4> start{{0u, 1u, 3u, 2u}};
         Polygon p;
-        for (const unsigned int v : {0u, 1u, 3u, 2u})
-          p.emplace_back(face->vertex(v)[0], face->vertex(v)[1]);
+        for (unsigned int e = 0; e < 4; ++e)
+          {
+            p.emplace_back(face->vertex(start[e])[0], face->vertex(start[e])[1]);
+            if (!follow_hanging)
+              continue;
+            std::vector<Point<3>> between;
+            hanging_points(face->line(edges[e].first), between);
+            if (!edges[e].second)
+              std::reverse(between.begin(), between.end());
+            for (const auto &x : between)
+              p.emplace_back(x[0], x[1]);
+          }
         return counter_clockwise(p);
+      }
+
+      // Convex pieces of a star-shaped outline for the Sutherland-Hodgman
+      // clipping: a plain quadrilateral face itself, else the triangles from
+      // the centroid to each edge.
+      std::vector<Polygon>
+      fan(const Polygon &p)
+      {
+        if (p.size() == 4)
+          return {p};
+        Point<2> c;
+        for (const auto &x : p)
+          c += x / double(p.size());
+        std::vector<Polygon> pieces;
+        for (unsigned int i = 0; i < p.size(); ++i)
+          pieces.push_back({c, p[i], p[(i + 1) % p.size()]});
+        return pieces;
       }
 
       struct FaceRef
@@ -51,7 +103,8 @@ namespace squeal
       std::vector<FaceRef>
       contact_faces(const DoFHandler<3> &dof_handler,
                     const types::boundary_id id,
-                    const bool only_owned)
+                    const bool only_owned,
+                    const bool follow_hanging)
       {
         std::vector<FaceRef> faces;
         for (const auto &cell : dof_handler.active_cell_iterators())
@@ -60,7 +113,7 @@ namespace squeal
               if (cell->face(f)->at_boundary() &&
                   cell->face(f)->boundary_id() == id)
                 {
-                  FaceRef r{cell, f, face_outline(cell->face(f)), {}};
+                  FaceRef r{cell, f, face_outline(cell->face(f), follow_hanging), {}};
                   std::vector<Point<2>> pts(r.outline.begin(), r.outline.end());
                   r.box = BoundingBox<2>(pts);
                   faces.push_back(r);
@@ -103,9 +156,9 @@ namespace squeal
                          const unsigned int   n_points)
     {
       const auto pad_faces =
-        contact_faces(dof_handler, geometry::boundary::pad_contact, true);
+        contact_faces(dof_handler, geometry::boundary::pad_contact, true, false);
       const auto disc_faces =
-        contact_faces(dof_handler, geometry::boundary::disc_contact, false);
+        contact_faces(dof_handler, geometry::boundary::disc_contact, false, true);
 
       std::vector<CouplingPoint> points;
       double                     covered = 0, pad_area = 0;
@@ -127,14 +180,50 @@ namespace squeal
                   const bool     on_pad = to_unit(mapping, pf.cell, x, pu);
                   Assert(on_pad, ExcInternalError());
                   (void)on_pad;
+                  bool found = false;
                   for (const auto &df : disc_faces)
                     if (df.box.point_inside(Point<2>(x[0], x[1]), 1e-9) &&
                         to_unit(mapping, df.cell, x, du))
                       {
                         points.push_back({pf.cell, df.cell, pu, du, fv.JxW(k)});
                         covered += fv.JxW(k);
+                        found = true;
                         break;
                       }
+                  if (found)
+                    continue;
+                  // On a locally refined disc the polynomial arc of a
+                  // coarse cell and the arcs of its refined neighbours
+                  // leave slivers between them: a point there belongs to
+                  // the nearest disc cell (unit distance below 1e-3).
+                  double                               nearest = 1e-3;
+                  const FaceRef                       *best    = nullptr;
+                  for (const auto &df : disc_faces)
+                    if (df.box.point_inside(Point<2>(x[0], x[1]), 1e-3))
+                      {
+                        Point<3> u;
+                        try
+                          {
+                            u = mapping.transform_real_to_unit_cell(df.cell, x);
+                          }
+                        catch (const typename Mapping<3>::ExcTransformationFailed &)
+                          {
+                            continue;
+                          }
+                        const double d =
+                          GeometryInfo<3>::distance_to_unit_cell(u);
+                        if (d < nearest)
+                          {
+                            nearest = d;
+                            best    = &df;
+                            du      = u;
+                          }
+                      }
+                  if (best != nullptr)
+                    {
+                      points.push_back({pf.cell, best->cell, pu, du, fv.JxW(k)});
+                      covered += fv.JxW(k);
+                    }
                 }
               continue;
             }
@@ -147,7 +236,9 @@ namespace squeal
             {
               if (!boxes_overlap(pf.box, df.box))
                 continue;
-              const Polygon overlap = clip_polygon(pf.outline, df.outline);
+              for (const Polygon &piece : fan(df.outline))
+              {
+              const Polygon overlap = clip_polygon(piece, pf.outline);
               if (overlap.size() < 3)
                 continue;
               const double area = std::abs(signed_area(overlap));
@@ -165,6 +256,7 @@ namespace squeal
                   points.push_back({pf.cell, df.cell, pu, du, w});
                   covered += w;
                 }
+              }
             }
         }
       if (!pad_faces.empty() && covered < (1 - 1e-6) * pad_area)

@@ -341,6 +341,28 @@ namespace squeal
                         Patterns::Double(0.01, 1.),
                         "Fraction of the cells, those with the largest error "
                         "indicator, refined in each adaptive cycle.");
+      prm.declare_entry("Frequency tolerance", str(frequency_tolerance),
+                        Patterns::Double(0., 0.5),
+                        "CEA: relative error wanted for every eigenvalue "
+                        "of the band at the first sweep point (0.005 = "
+                        "0.5 %), as |d lambda| / |lambda|: it bounds the "
+                        "relative frequency error and holds the growth rate "
+                        "to the same fraction of 2 pi f. Each cycle "
+                        "estimates each mode's error as 1.5 x its distance "
+                        "to the same mesh at degree + 1 (modes paired by "
+                        "shape) and refines, driven by the modes above the "
+                        "tolerance, until every estimate is below it or "
+                        "Adaptive cycles refinements are spent (a warning "
+                        "then). 0: off (the cycles run their fixed number). "
+                        "Needs Finite element degree <= 3.");
+      prm.declare_entry("Check estimate", check_estimate ? "true" : "false",
+                        Patterns::Bool(),
+                        "CEA with a Frequency tolerance: after the last "
+                        "cycle, solve the final mesh at degree + 2 as well "
+                        "and write each mode's error against it beside its "
+                        "estimate (adaptive_modes.csv): the estimate checked "
+                        "against a much richer discretisation. Needs "
+                        "Finite element degree <= 2; costly.");
       prm.leave_subsection();
     }
 
@@ -358,6 +380,17 @@ namespace squeal
       disc_refinements_under_pad = prm.get_integer("Disc refinements under pad");
       adaptive_cycles            = prm.get_integer("Adaptive cycles");
       refinement_fraction        = prm.get_double("Refinement fraction");
+      frequency_tolerance        = prm.get_double("Frequency tolerance");
+      check_estimate             = prm.get_bool("Check estimate");
+      check(frequency_tolerance == 0. || fe_degree <= 3,
+            "Mesh/Frequency tolerance = " + str(frequency_tolerance) +
+              " estimates the error at Finite element degree + 1, which must "
+              "be at most 4: set Finite element degree to 1, 2 or 3 (it is " +
+              std::to_string(fe_degree) + ")");
+      check(!check_estimate || (frequency_tolerance > 0. && fe_degree <= 2),
+            "Mesh/Check estimate = true needs Mesh/Frequency tolerance > 0 "
+            "and Finite element degree <= 2 (the check solves at degree + 2, "
+            "at most 4)");
       prm.leave_subsection();
     }
 

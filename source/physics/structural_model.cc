@@ -113,8 +113,74 @@ namespace squeal
           std::to_string(indicator.size()));
       GridRefinement::refine_and_coarsen_fixed_number(triangulation, indicator,
                                                       fraction, 0.);
+      std::vector<bool> flags;
+      triangulation.save_refine_flags(flags);
+      refinement_history.push_back(flags);
       triangulation.execute_coarsening_and_refinement();
       setup_dofs_and_assemble(pcout);
+    }
+
+    void
+    StructuralModel::replay_refinement(
+      const std::vector<std::vector<bool>> &history,
+      ConditionalOStream                   &pcout)
+    {
+      for (const auto &flags : history)
+        {
+          // deal.II stores dim bits (the refinement case) per active cell
+          if (flags.size() != 3 * triangulation.n_active_cells())
+            throw std::runtime_error(
+              "replay_refinement: a step has " + std::to_string(flags.size()) +
+              " refine-flag bits for a mesh of " +
+              std::to_string(triangulation.n_active_cells()) +
+              " cells (3 per cell expected)");
+          triangulation.load_refine_flags(flags);
+          triangulation.execute_coarsening_and_refinement();
+          refinement_history.push_back(flags);
+        }
+      setup_dofs_and_assemble(pcout);
+    }
+
+    std::vector<std::complex<double>>
+    transfer_field(const StructuralModel                   &from,
+                   const std::vector<std::complex<double>> &field,
+                   const StructuralModel                   &to)
+    {
+      if (field.size() != from.n_dofs() ||
+          from.triangulation.n_active_cells() != to.triangulation.n_active_cells())
+        throw std::runtime_error(
+          "transfer_field: the field or the meshes do not match (" +
+          std::to_string(field.size()) + " values for " +
+          std::to_string(from.n_dofs()) + " DoFs; " +
+          std::to_string(from.triangulation.n_active_cells()) + " and " +
+          std::to_string(to.triangulation.n_active_cells()) + " cells)");
+      const Quadrature<3> at_to_points(to.fe.get_unit_support_points());
+      FEValues<3> fe_values(from.mapping, from.fe, at_to_points, update_values);
+      std::vector<types::global_dof_index> from_dofs(from.fe.n_dofs_per_cell()),
+        to_dofs(to.fe.n_dofs_per_cell());
+      std::vector<std::complex<double>> result(to.n_dofs());
+      auto cell_to = to.dof_handler.begin_active();
+      for (const auto &cell : from.dof_handler.active_cell_iterators())
+        {
+          if (cell->center().distance(cell_to->center()) > 1e-9)
+            throw std::runtime_error(
+              "transfer_field: the meshes differ (cell " +
+              std::to_string(cell->active_cell_index()) + ")");
+          fe_values.reinit(cell);
+          cell->get_dof_indices(from_dofs);
+          cell_to->get_dof_indices(to_dofs);
+          for (unsigned int q = 0; q < to_dofs.size(); ++q)
+            {
+              const unsigned int  c = to.fe.system_to_component_index(q).first;
+              std::complex<double> v = 0.;
+              for (unsigned int j = 0; j < from_dofs.size(); ++j)
+                if (from.fe.system_to_component_index(j).first == c)
+                  v += field[from_dofs[j]] * fe_values.shape_value(j, q);
+              result[to_dofs[q]] = v;
+            }
+          ++cell_to;
+        }
+      return result;
     }
 
     void

@@ -66,6 +66,11 @@ namespace squeal
       unsigned int adaptive_cycles    = 0;
       /// CEA: fraction of the cells refined per cycle (largest indicator)
       double       refinement_fraction = 0.15;
+      /// CEA: relative frequency tolerance of the tolerance-driven mode
+      /// (0: off); the estimate solves the mesh at degree + 1
+      double       frequency_tolerance = 0.;
+      /// CEA: check the estimate against degree + 2 on the final mesh
+      bool         check_estimate      = false;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };

@@ -12,6 +12,10 @@
  */
 
 #include <deal.II/base/conditional_ostream.h>
+
+#include <complex>
+#include <vector>
+
 #include <deal.II/base/index_set.h>
 #include <deal.II/distributed/shared_tria.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -172,6 +176,23 @@ namespace squeal
       refine(const dealii::Vector<float> &indicator, double fraction,
              dealii::ConditionalOStream &pcout);
 
+      /**
+       * Applies the refinement steps of another model's
+       * refinement_history (same scene, possibly another degree) to this
+       * model's mesh, which must be the coarse mesh setup_and_assemble()
+       * built, then builds the DoFs, constraints and matrix parts once:
+       * afterwards both models have the same cells in the same order.
+       * @throws std::runtime_error if a step does not fit the mesh (a
+       * different scene or an already refined mesh).
+       */
+      void
+      replay_refinement(const std::vector<std::vector<bool>> &history,
+                        dealii::ConditionalOStream           &pcout);
+
+      /// The refine flags of every refine() so far (deal.II's save_refine_flags:
+      /// 3 bits per active cell of the mesh before that step), for replay_refinement().
+      std::vector<std::vector<bool>> refinement_history;
+
       /** The assembled parts, for the eigensolvers. */
       MatrixParts
       parts() const
@@ -237,6 +258,22 @@ namespace squeal
      */
     std::pair<std::vector<dealii::Point<3>>, std::vector<unsigned int>>
     dof_support_points(const StructuralModel &model);
+
+    /**
+     * A complex displacement field of @p from (one value per DoF of
+     * @p from, constraints already distributed, m) evaluated at the support
+     * points of every DoF of @p to (the component of that DoF): the field
+     * carried to another degree on the same mesh, for comparing mode shapes
+     * between discretisations (complex MAC). Every rank returns all
+     * to.n_dofs() values.
+     * @throws std::runtime_error if the two models' meshes differ (cell
+     * count or a cell centre more than 1e-9 m apart) or @p field has not
+     * from.n_dofs() entries.
+     */
+    std::vector<std::complex<double>>
+    transfer_field(const StructuralModel                   &from,
+                   const std::vector<std::complex<double>> &field,
+                   const StructuralModel                   &to);
 
     /**
      * Copies a (serial, one-process) PETSc matrix into a deal.II sparse
