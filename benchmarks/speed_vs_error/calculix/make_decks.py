@@ -34,9 +34,9 @@ MODES = 50
 
 # (element, cells around, radial, through the thickness)
 DECKS = [("C3D20R", 32, 4, 1), ("C3D20R", 48, 6, 2), ("C3D20R", 64, 8, 2),
-         ("C3D20R", 96, 10, 3), ("C3D20R", 128, 14, 3), ("C3D20R", 192, 20, 4),
+         ("C3D20R", 96, 10, 3), ("C3D20R", 128, 14, 3),
          ("C3D8I", 48, 6, 2), ("C3D8I", 96, 12, 3), ("C3D8I", 128, 16, 4),
-         ("C3D8I", 192, 24, 5), ("C3D8I", 256, 32, 6)]
+         ("C3D8I", 192, 24, 5)]
 
 # Corners and mid-edge nodes of a cell in half-cell steps (r, theta, z).
 CORNERS = [(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 2, 0),
