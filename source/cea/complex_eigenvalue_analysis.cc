@@ -874,7 +874,7 @@ namespace squeal
           for (unsigned int c = 0; c < sum.size(); ++c)
             indicator[c] = std::sqrt(sum[c]);
           f_prev = f;
-          prev_shapes    = shapes;
+          prev_shapes    = std::move(shapes); // reassigned by the next solve
           prev_points    = std::move(points);
           prev_component = std::move(component);
           model.refine(indicator, m.refinement_fraction, quiet);

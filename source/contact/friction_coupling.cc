@@ -180,50 +180,14 @@ namespace squeal
                   const bool     on_pad = to_unit(mapping, pf.cell, x, pu);
                   Assert(on_pad, ExcInternalError());
                   (void)on_pad;
-                  bool found = false;
                   for (const auto &df : disc_faces)
                     if (df.box.point_inside(Point<2>(x[0], x[1]), 1e-9) &&
                         to_unit(mapping, df.cell, x, du))
                       {
                         points.push_back({pf.cell, df.cell, pu, du, fv.JxW(k)});
                         covered += fv.JxW(k);
-                        found = true;
                         break;
                       }
-                  if (found)
-                    continue;
-                  // On a locally refined disc the polynomial arc of a
-                  // coarse cell and the arcs of its refined neighbours
-                  // leave slivers between them: a point there belongs to
-                  // the nearest disc cell (unit distance below 1e-3).
-                  double                               nearest = 1e-3;
-                  const FaceRef                       *best    = nullptr;
-                  for (const auto &df : disc_faces)
-                    if (df.box.point_inside(Point<2>(x[0], x[1]), 1e-3))
-                      {
-                        Point<3> u;
-                        try
-                          {
-                            u = mapping.transform_real_to_unit_cell(df.cell, x);
-                          }
-                        catch (const typename Mapping<3>::ExcTransformationFailed &)
-                          {
-                            continue;
-                          }
-                        const double d =
-                          GeometryInfo<3>::distance_to_unit_cell(u);
-                        if (d < nearest)
-                          {
-                            nearest = d;
-                            best    = &df;
-                            du      = u;
-                          }
-                      }
-                  if (best != nullptr)
-                    {
-                      points.push_back({pf.cell, best->cell, pu, du, fv.JxW(k)});
-                      covered += fv.JxW(k);
-                    }
                 }
               continue;
             }
