@@ -475,6 +475,19 @@ namespace squeal
                         Patterns::Double(0., Patterns::Double::max_double_value),
                         "Stiffness of one spring in the sliding direction "
                         "[N/m]; far ends fixed.");
+      prm.declare_entry(
+        "Attachment radius", str(attachment_radius),
+        Patterns::Double(0., Patterns::Double::max_double_value),
+        "Radius [m] of the disc of the support face on which each spring "
+        "acts: the face nodes inside it share the spring with cosine-bell "
+        "weights (1 at the station, 0 at the radius) times their face area, "
+        "normalised so that each spring keeps its stiffness. A mesh with no "
+        "node inside falls back to the nearest node. 0: the nearest node "
+        "only (the thesis' point springs; a point force on a 3D body is "
+        "singular, so frequencies carried by the springs drift under "
+        "refinement and the tolerance-driven mesh cannot converge). The "
+        "default equals the default mesh's node spacing across the support, "
+        "where it reduces to the node at the station.");
       prm.leave_subsection();
     }
 
@@ -485,6 +498,7 @@ namespace squeal
       n_rows_per_side = prm.get_integer("Rows per side");
       n_per_row       = prm.get_integer("Springs per row");
       stiffness       = prm.get_double("Stiffness");
+      attachment_radius = prm.get_double("Attachment radius");
       prm.leave_subsection();
     }
 

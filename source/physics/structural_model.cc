@@ -17,6 +17,8 @@
 #include <squeal/physics/structural_model.h>
 
 #include <cmath>
+#include <limits>
+#include <set>
 
 namespace squeal
 {
@@ -377,32 +379,154 @@ namespace squeal
                                          g.support_length / 2 :
                                          g.support_length * k / (s.n_per_row - 1)));
 
-      // Nearest support node to each station (the y DoF of the vertex).
-      std::vector<double>                  best(stations.size(), 1e300);
-      std::vector<types::global_dof_index> best_dof(stations.size());
+      // Each spring spread over the support-face nodes within the
+      // attachment radius of its station: cosine-bell weight times the
+      // node's share of the face area (Gauss-Lobatto face quadrature on the
+      // FE_Q support points, so the spring matrix stays diagonal on
+      // conforming meshes), normalised to the spring's stiffness.
+      const double a = s.attachment_radius;
+      const auto   bell = [&](const Point<3> &x, const Point<3> &station) {
+        if (std::abs(x[1] - station[1]) > 1e-6 * g.pad_size)
+          return 0.;
+        const double r = std::hypot(x[0] - station[0], x[2] - station[2]);
+        return r < a ? 0.5 * (1. + std::cos(numbers::PI * r / a)) : 0.;
+      };
+      const QGaussLobatto<2> face_quadrature(fe.degree + 1);
+      FEFaceValues<3>        fe_face(mapping, fe, face_quadrature,
+                              update_values | update_quadrature_points |
+                                update_JxW_values);
+      const unsigned int     n = fe.n_dofs_per_cell();
+      FullMatrix<double>     cell_k(n, n);
+      std::vector<types::global_dof_index> dofs(n);
+      std::vector<double>    total(stations.size(), 0.);
+      // the face nodes each spring acts on (for the report)
+      std::vector<std::set<std::pair<long long, long long>>> nodes(
+        stations.size());
+      const auto on_side_face = [&](const auto &cell, const unsigned int f) {
+        return cell->is_locally_owned() &&
+               cell->material_id() == geometry::material::support &&
+               cell->face(f)->at_boundary() &&
+               std::abs(std::abs(cell->face(f)->center()[1]) -
+                        g.pad_size / 2) < 1e-6 * g.pad_size;
+      };
+      for (const unsigned int pass : {0u, 1u})
+        {
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            for (const auto f : cell->face_indices())
+              if (a > 0 && on_side_face(cell, f))
+                {
+                  fe_face.reinit(cell, f);
+                  cell_k = 0;
+                  bool any = false;
+                  for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                    for (unsigned int i = 0; i < stations.size(); ++i)
+                      {
+                        const double w =
+                          bell(fe_face.quadrature_point(q), stations[i]) *
+                          fe_face.JxW(q);
+                        if (w == 0.)
+                          continue;
+                        if (pass == 0)
+                          {
+                            total[i] += w;
+                            const auto &x = fe_face.quadrature_point(q);
+                            nodes[i].insert({std::llround(x[0] * 1e9),
+                                             std::llround(x[2] * 1e9)});
+                            continue;
+                          }
+                        any = true;
+                        const double c = reference.spring_stiffness * w / total[i];
+                        for (unsigned int k = 0; k < n; ++k)
+                          for (unsigned int l = 0; l < n; ++l)
+                            cell_k(k, l) +=
+                              c * fe_face.shape_value_component(k, q, 1) *
+                              fe_face.shape_value_component(l, q, 1);
+                      }
+                  if (any)
+                    {
+                      cell->get_dof_indices(dofs);
+                      constraints.distribute_local_to_global(cell_k, dofs,
+                                                             stiffness_springs);
+                    }
+                }
+          if (pass == 0)
+            {
+              const std::vector<double> local = total;
+              Utilities::MPI::sum(local, comm, total);
+            }
+        }
+
+      // Stations with no node inside the radius (or radius 0): the nearest
+      // unconstrained support node takes the whole spring (its y DoF);
+      // among nodes at the
+      // same distance the lowest DoF index, the same on every rank.
+      const auto &unit = fe.get_unit_support_points();
+      std::vector<double> best(stations.size(), 1e300);
+      std::vector<types::global_dof_index> best_dof(
+        stations.size(), std::numeric_limits<types::global_dof_index>::max());
       for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->material_id() == geometry::material::support)
-          for (const auto v : cell->vertex_indices())
-            for (unsigned int i = 0; i < stations.size(); ++i)
-              {
-                const double d = cell->vertex(v).distance(stations[i]);
-                if (d < best[i])
-                  {
-                    best[i]     = d;
-                    best_dof[i] = cell->vertex_dof_index(v, 1);
-                  }
-              }
-      double worst = 0;
+        if (!cell->is_artificial() &&
+            cell->material_id() == geometry::material::support)
+          {
+            cell->get_dof_indices(dofs);
+            for (unsigned int k = 0; k < n; ++k)
+              if (fe.system_to_component_index(k).first == 1 &&
+                  !constraints.is_constrained(dofs[k])) // not hanging
+                {
+                  const Point<3> x =
+                    mapping.transform_unit_to_real_cell(cell, unit[k]);
+                  for (unsigned int i = 0; i < stations.size(); ++i)
+                    {
+                      const double d = x.distance(stations[i]);
+                      if (d < best[i] - 1e-12 ||
+                          (d < best[i] + 1e-12 && dofs[k] < best_dof[i]))
+                        {
+                          best[i]     = std::min(best[i], d);
+                          best_dof[i] = dofs[k];
+                        }
+                    }
+                }
+          }
+      double       worst = 0;
+      unsigned int n_point = 0;
+      for (unsigned int i = 0; i < stations.size(); ++i)
+        if (total[i] == 0.)
+          {
+            ++n_point;
+            const double d = Utilities::MPI::min(best[i], comm);
+            const types::global_dof_index dof = Utilities::MPI::min(
+              best[i] < d + 1e-12 ? best_dof[i] :
+                                    std::numeric_limits<types::global_dof_index>::max(),
+              comm);
+            worst = std::max(worst, d);
+            if (locally_owned_dofs.is_element(dof))
+              stiffness_springs.add(dof, dof, reference.spring_stiffness);
+          }
+      stiffness_springs.compress(VectorOperation::add);
+      // nodes per spread spring (a node on a rank boundary counts once per
+      // rank: a report, not an input)
+      unsigned int n_min = std::numeric_limits<unsigned int>::max(), n_max = 0;
       for (unsigned int i = 0; i < stations.size(); ++i)
         {
-          worst = std::max(worst, best[i]);
-          if (locally_owned_dofs.is_element(best_dof[i]))
-            stiffness_springs.add(best_dof[i], best_dof[i],
-                                  reference.spring_stiffness);
+          const unsigned int c = Utilities::MPI::sum(
+            static_cast<unsigned int>(nodes[i].size()), comm);
+          if (total[i] > 0.)
+            {
+              n_min = std::min(n_min, c);
+              n_max = std::max(n_max, c);
+            }
         }
-      stiffness_springs.compress(VectorOperation::add);
       pcout << "Springs: " << stations.size() << " x " << s.stiffness
-            << " N/m in the sliding direction";
+            << " N/m in the sliding direction, ";
+      if (n_point == stations.size())
+        pcout << "each at the nearest node";
+      else
+        pcout << stations.size() - n_point << " spread over radius "
+              << 1e3 * a << " mm (" << n_min << "-" << n_max
+              << " face nodes each)"
+              << (n_point > 0 ? ", " + std::to_string(n_point) +
+                                  " at the nearest node (none inside)" :
+                                "");
       if (worst > 1e-9)
         pcout << " (WARNING: a station lies " << worst
               << " m from the nearest node; choose mesh counts that put "

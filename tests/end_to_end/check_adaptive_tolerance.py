@@ -81,6 +81,9 @@ band = sorted((r for r in modes if int(r["cycle"]) == last
                and 1.02 * f_min < float(r["freq_Hz"]) < 0.98 * f_max),
               key=lambda r: float(r["freq_Hz"]))
 disc = "Bodies = disc" in text
+if not disc and "Rows per side = 0" not in text:
+    check("the springs are spread over their attachment discs",
+          "44 spread over radius" in log, log[log.find("Springs:"):][:200])
 if disc:
     # verification.md A3: Hz and multiplicity
     A3 = [(1629.8, 1), (1638.5, 2), (1839.8, 2), (2557.6, 2), (3853.5, 2), (5611.7, 2),

@@ -96,12 +96,24 @@ namespace squeal
       void parse_parameters(ParameterHandler &prm);
     };
 
-    /** The 4 x 11 tangential springs holding the support (thesis § 3.2.1). */
+    /** The 4 x 11 tangential springs holding the support (thesis § 3.2.1).
+     *
+     * Each spring acts on a small disc of the support face around its
+     * station (radius attachment_radius, cosine-bell weights on the face
+     * nodes inside it, normalised so that the spring keeps its stiffness):
+     * a force at one node of a 3D body is singular (its local compliance
+     * grows without bound under refinement), so the thesis' point springs
+     * have no converged answer. At 1.25 mm, the node spacing across the
+     * support of the default mesh, the default mesh sees the single node
+     * at each station, as the thesis' model did.
+     */
     struct Springs
     {
       unsigned int n_rows_per_side = 2;
       unsigned int n_per_row       = 11;
       double       stiffness       = 8.422e6; ///< N/m per spring
+      /// m; 0: the node nearest to each station (point springs)
+      double       attachment_radius = 1.25e-3;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };
