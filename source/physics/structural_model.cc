@@ -106,6 +106,7 @@ namespace squeal
     void
     StructuralModel::refine(const Vector<float> &indicator,
                             const double         fraction,
+                            const bool           by_error,
                             ConditionalOStream  &pcout)
     {
       if (indicator.size() != triangulation.n_active_cells())
@@ -113,8 +114,13 @@ namespace squeal
           "a refinement indicator needs one value per active cell (" +
           std::to_string(triangulation.n_active_cells()) + "), got " +
           std::to_string(indicator.size()));
-      GridRefinement::refine_and_coarsen_fixed_number(triangulation, indicator,
-                                                      fraction, 0.);
+      if (by_error)
+        GridRefinement::refine_and_coarsen_fixed_fraction(
+          triangulation, indicator, fraction, 0.,
+          std::numeric_limits<unsigned int>::max(), VectorTools::L2_norm);
+      else
+        GridRefinement::refine_and_coarsen_fixed_number(triangulation,
+                                                        indicator, fraction, 0.);
       std::vector<bool> flags;
       triangulation.save_refine_flags(flags);
       refinement_history.push_back(flags);

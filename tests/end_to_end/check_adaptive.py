@@ -13,7 +13,11 @@ usage: check_adaptive.py SQUEAL PRM WORKDIR
   new cells (ties allowed), the one with the smallest share fewer;
 - the modes' frequencies on the final mesh are below those of the first
   mesh on the whole (refinement relaxes a conforming displacement model: the
-  median of the matched changes is a decrease).
+  median of the matched changes is a decrease);
+- Mesh/Marking = error (Doerfler's bulk criterion) with Refinement fraction
+  0.5 refines fewer cells than Marking = cells with the same fraction (half
+  of the cells): the indicator is concentrated in the support, so half of
+  the squared indicator sits in far fewer than half of the cells.
 """
 import csv
 import os
@@ -27,9 +31,9 @@ os.makedirs(work, exist_ok=True)
 os.chdir(work)
 
 
-def run(name, cycles):
+def run(name, cycles, extra=""):
     return run_squeal(squeal, prm, name,
-                      f"subsection Mesh\n  set Adaptive cycles = {cycles}\nend\n")
+                      f"subsection Mesh\n  set Adaptive cycles = {cycles}\n{extra}end\n")
 
 
 def table(path):
@@ -71,4 +75,18 @@ changes = sorted(min(f2, key=lambda g: abs(g - f)) - f for f in f0 if 1000 < f <
 check("frequencies move down with refinement (median change < 0)",
       changes and changes[len(changes) // 2] < 0,
       f"median change {changes[len(changes) // 2] if changes else None} Hz", True)
+
+
+def refined(marking):
+    out, _ = run("marking_" + marking, 1,
+                 f"  set Marking = {marking}\n  set Refinement fraction = 0.5\n")
+    c = table(os.path.join(out, "adaptive_cycles.csv"))
+    return (int(c[1]["cells"]) - int(c[0]["cells"])) / 7, int(c[0]["cells"])
+
+
+by_error, n0 = refined("error")
+by_cells, _ = refined("cells")
+check("Marking = error refines fewer cells than Marking = cells at fraction 0.5",
+      1 <= by_error < 0.6 * by_cells and by_cells >= 0.5 * n0 - 1,
+      f"{n0} cells; refined: {by_error:g} (error), {by_cells:g} (cells)", True)
 finish()

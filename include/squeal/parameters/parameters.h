@@ -66,9 +66,17 @@ namespace squeal
       unsigned int adaptive_cycles    = 0;
       /// CEA: fraction of the cells refined per cycle (largest indicator)
       double       refinement_fraction = 0.15;
+      /// CEA: `cells` (refine that fraction of the cells) or `error`
+      /// (the fewest cells carrying that fraction of the squared indicator)
+      std::string  marking = "cells";
       /// CEA: relative frequency tolerance of the tolerance-driven mode
       /// (0: off); the estimate solves the mesh at degree + 1
       double       frequency_tolerance = 0.;
+      /// CEA: the degree + 1 solve of the estimate: `projected`
+      /// (Rayleigh-Ritz on the carried degree-p modes and three
+      /// shift-and-invert steps, one factorisation per octave) or `full`
+      /// (the full solver, 2-3x slower)
+      std::string  estimate_solver = "projected";
       /// CEA: check the estimate against degree + 2 on the final mesh
       bool         check_estimate      = false;
       void declare_parameters(ParameterHandler &prm) const;

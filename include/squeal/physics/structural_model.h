@@ -166,14 +166,19 @@ namespace squeal
 
       /**
        * Refines the cells with the largest @p indicator (one value per
-       * active cell, the same on every rank), @p fraction of them, then
-       * builds the DoFs, constraints and matrix parts again on the new mesh
-       * (as setup_and_assemble() without rebuilding the coarse mesh).
+       * active cell, the same on every rank), then builds the DoFs,
+       * constraints and matrix parts again on the new mesh (as
+       * setup_and_assemble() without rebuilding the coarse mesh). Marking:
+       * with @p by_error false, @p fraction of the cells (fixed number);
+       * with it true, the fewest cells whose squared indicators sum to
+       * @p fraction of the total (fixed fraction, Doerfler's bulk
+       * criterion: W. Doerfler, SIAM J. Numer. Anal. 33, 1996, eq. 4.1).
        * @throws std::runtime_error if @p indicator does not have one entry
        * per active cell.
        */
       void
       refine(const dealii::Vector<float> &indicator, double fraction,
+             bool by_error,
              dealii::ConditionalOStream &pcout);
 
       /**
