@@ -1,7 +1,16 @@
 """Shared by the speed-against-error scripts: run squeal on a parameter text."""
+import os
 import subprocess
 import sys
 import time
+
+
+def save_png(fig, path):
+    """Writes FIG to PATH through a temporary name (an earlier plot is
+    replaced only by a complete one)."""
+    fig.savefig(path + ".tmp.png", dpi=130)
+    os.replace(path + ".tmp.png", path)
+    print("wrote", path)
 
 
 def run_squeal(squeal, body, out):

@@ -41,7 +41,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "calculix"))
-from common import disc_errors, run_disc  # noqa: E402
+from common import disc_errors, run_disc, save_png  # noqa: E402
 from make_decks import DECKS, deck_name, write_all  # noqa: E402
 
 root = os.path.join(here, "..", "..")
@@ -156,9 +156,7 @@ def main():
     ax.legend(fontsize=8)
     fig.tight_layout()
     png = os.path.join(here, "calculix_pareto.png")
-    fig.savefig(png + ".tmp.png", dpi=130)
-    os.replace(png + ".tmp.png", png)
-    print("wrote", png)
+    save_png(fig, png)
 
     print("\n| code | mesh | DoFs | wall time [s] | largest error | median error |")
     print("|---|---|---|---|---|---|")

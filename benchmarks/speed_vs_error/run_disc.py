@@ -23,7 +23,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from common import run_disc  # noqa: E402
+from common import run_disc, save_png  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -71,9 +71,7 @@ def main():
     ax.legend()
     fig.tight_layout()
     png = os.path.join(here, "disc_pareto.png")
-    fig.savefig(png + ".tmp.png", dpi=130)
-    os.replace(png + ".tmp.png", png)
-    print("wrote", png)
+    save_png(fig, png)
     print("\n| mesh | degree | DoFs | wall time [s] | largest error | median error |")
     print("|---|---|---|---|---|---|")
     for r in rows:

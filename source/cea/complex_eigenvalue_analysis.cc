@@ -582,9 +582,8 @@ namespace squeal
       };
 
       std::vector<Partner>
-      partners_in(const physics::StructuralModel                  &coarse,
-                  const std::vector<eigen::EigenPair>             &coarse_pairs,
-                  const std::vector<std::vector<std::complex<double>>> &coarse_shapes,
+      partners_in(const std::vector<eigen::EigenPair>             &coarse_pairs,
+                  const std::vector<std::vector<std::complex<double>>> &carried,
                   const physics::StructuralModel                  &rich,
                   const std::vector<eigen::EigenPair>             &rich_pairs)
       {
@@ -592,7 +591,7 @@ namespace squeal
         std::vector<Partner> result(coarse_pairs.size());
         for (unsigned int k = 0; k < coarse_pairs.size(); ++k)
           {
-            const auto a = physics::transfer_field(coarse, coarse_shapes[k], rich);
+            const auto         &a = carried[k];
             std::vector<double> mac(rich_pairs.size(), 0.);
             double              aa = 0.;
             for (const auto &v : a)
@@ -647,8 +646,12 @@ namespace squeal
         rich.setup_and_assemble(quiet);
         rich.replay_refinement(model.refinement_history, quiet);
         n_dofs = rich.n_dofs();
+        // the coarse shapes at the rich model's support points
+        std::vector<std::vector<std::complex<double>>> carried;
+        for (const auto &x : shapes)
+          carried.push_back(physics::transfer_field(model, x, rich));
         if (!projected)
-          return partners_in(model, pairs, shapes, rich,
+          return partners_in(pairs, carried, rich,
                              eigen::solve_full(rich.parts(), p, band, quiet));
 
         // Projected: the richer model's eigenvalues by Rayleigh-Ritz on
@@ -694,14 +697,14 @@ namespace squeal
             const eigen::DirectSolver solver(A);
             for (const unsigned int k : modes)
               {
-                const auto carried = physics::transfer_field(model, shapes[k], rich);
                 for (const bool imaginary : {false, true})
                   {
                     physics::PETScVector v(owned, rich.comm),
                       f(owned, rich.comm), y(owned, rich.comm);
                     for (const auto j : owned)
                       if (!rich.constraints.is_constrained(j))
-                        v(j) = imaginary ? carried[j].imag() : carried[j].real();
+                        v(j) = imaginary ? carried[k][j].imag() :
+                                           carried[k][j].real();
                     v.compress(VectorOperation::insert);
                     if (v.l2_norm() == 0.)
                       continue;
@@ -727,7 +730,7 @@ namespace squeal
             reduced.expand(r.q, e.re, e.im);
             rich_pairs.push_back(std::move(e));
           }
-        return partners_in(model, pairs, shapes, rich, rich_pairs);
+        return partners_in(pairs, carried, rich, rich_pairs);
       }
     } // namespace
 

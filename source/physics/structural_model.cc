@@ -16,6 +16,7 @@
 #include <squeal/geometry/tribobrake_mesh.h>
 #include <squeal/physics/structural_model.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -466,12 +467,14 @@ namespace squeal
       // unconstrained support node takes the whole spring (its y DoF);
       // among nodes at the
       // same distance the lowest DoF index, the same on every rank.
+      const bool any_point =
+        std::find(total.begin(), total.end(), 0.) != total.end();
       const auto &unit = fe.get_unit_support_points();
       std::vector<double> best(stations.size(), 1e300);
       std::vector<types::global_dof_index> best_dof(
         stations.size(), std::numeric_limits<types::global_dof_index>::max());
       for (const auto &cell : dof_handler.active_cell_iterators())
-        if (!cell->is_artificial() &&
+        if (any_point && !cell->is_artificial() &&
             cell->material_id() == geometry::material::support)
           {
             cell->get_dof_indices(dofs);
@@ -511,17 +514,17 @@ namespace squeal
       stiffness_springs.compress(VectorOperation::add);
       // nodes per spread spring (a node on a rank boundary counts once per
       // rank: a report, not an input)
+      std::vector<unsigned int> local_counts, counts(stations.size());
+      for (const auto &set : nodes)
+        local_counts.push_back(set.size());
+      Utilities::MPI::sum(local_counts, comm, counts);
       unsigned int n_min = std::numeric_limits<unsigned int>::max(), n_max = 0;
       for (unsigned int i = 0; i < stations.size(); ++i)
-        {
-          const unsigned int c = Utilities::MPI::sum(
-            static_cast<unsigned int>(nodes[i].size()), comm);
-          if (total[i] > 0.)
-            {
-              n_min = std::min(n_min, c);
-              n_max = std::max(n_max, c);
-            }
-        }
+        if (total[i] > 0.)
+          {
+            n_min = std::min(n_min, counts[i]);
+            n_max = std::max(n_max, counts[i]);
+          }
       pcout << "Springs: " << stations.size() << " x " << s.stiffness
             << " N/m in the sliding direction, ";
       if (n_point == stations.size())
