@@ -815,9 +815,9 @@ namespace squeal
             {
               std::map<std::array<long long, 4>, unsigned int> new_index;
               const auto key = [](const dealii::Point<3> &x, const unsigned int c) {
-                return std::array<long long, 4>{std::llround(x[0] * 1e9),
-                                                std::llround(x[1] * 1e9),
-                                                std::llround(x[2] * 1e9), c};
+                return std::array<long long, 4>{{std::llround(x[0] * 1e9),
+                                                 std::llround(x[1] * 1e9),
+                                                 std::llround(x[2] * 1e9), c}};
               };
               for (unsigned int i = 0; i < points.size(); ++i)
                 new_index[key(points[i], component[i])] = i;
