@@ -93,8 +93,19 @@ namespace squeal
           e.second = -e.second;
         return r;
       };
+      // The master surface's imposed rigid slip (a turning disc) enters
+      // each slip as -(sum_l M_jl) tau_k . delta.
+      std::vector<std::array<double, 2>> imposed(n_s, {{0., 0.}});
+      for (unsigned int j = 0; j < n_s; ++j)
+        {
+          double m = 0.;
+          for (const auto &e : op.M[j])
+            m += e.second;
+          for (unsigned int k = 0; k < 2; ++k)
+            imposed[j][k] = -m * (frame[j][k] * settings.master_slip);
+        }
       const auto slip_of = [&](unsigned int j, const Vector<double> &u) {
-        std::array<double, 2> sl{{0., 0.}};
+        std::array<double, 2> sl = imposed[j];
         for (unsigned int k = 0; k < 2; ++k)
           for (const auto &[d, v] : slip_row(j, k))
             sl[k] += v * (u[d] - u_prev[d]);
@@ -105,9 +116,12 @@ namespace squeal
       s.displacement.reinit(n);
       s.pressure.reinit(n_s);
       s.tangential_traction.assign(n_s, {{0., 0.}});
-      // Sets: active (in contact), stick (Coulomb only), slip directions.
+      // Sets: active (in contact), stick (Coulomb only); per slip node the
+      // direction n of its trial traction and a = mu z / |trial| at the
+      // last iterate (the linearisation point of the slip condition).
       std::vector<char> active(n_s, 0), stick(n_s, 0);
       std::vector<std::array<double, 2>> dir(slide);
+      std::vector<double>                curl(n_s, 0.);
       // Closed at the start: nodes whose weighted gap is zero to rounding
       // (relative to the node's length scale sqrt(D_jj)); they start stuck.
       // A previous load step's sets, when given, are the better start.
@@ -119,13 +133,23 @@ namespace squeal
                               op.gap0[j] <= 1e-10 * op.D[j] * std::sqrt(op.D[j]));
           stick[j] = model == FrictionModel::coulomb && active[j] &&
                      (!warm || settings.initial_status[j] == 1);
+          // a node slipping at the previous load step keeps its traction's
+          // direction for the first iteration
+          if (warm && settings.initial_traction.size() == n_s)
+            {
+              const auto  &t0   = settings.initial_traction[j];
+              const double norm = std::hypot(t0[0], t0[1]);
+              if (norm > 0.)
+                dir[j] = {{t0[0] / norm, t0[1] / norm}};
+            }
         }
+      const bool coulomb = model == FrictionModel::coulomb;
 
       for (unsigned int it = 0; it < settings.max_iterations; ++it)
         {
-          // Unknowns: u, then z_n of each active node, then (2 per stuck
-          // node) its tangential traction.
-          std::vector<unsigned int> A, S;
+          // Unknowns: u, then z_n of each active node, then (Coulomb: 2 per
+          // active node) its tangential traction.
+          std::vector<unsigned int> A;
           std::vector<unsigned int> column(n_s, 0), t_column(n_s, 0);
           for (unsigned int j = 0; j < n_s; ++j)
             if (active[j])
@@ -133,13 +157,14 @@ namespace squeal
                 column[j] = n + A.size();
                 A.push_back(j);
               }
-          for (unsigned int j : A)
-            if (stick[j])
+          unsigned int n_stick = 0;
+          if (coulomb)
+            for (unsigned int i = 0; i < A.size(); ++i)
               {
-                t_column[j] = n + A.size() + 2 * S.size();
-                S.push_back(j);
+                t_column[A[i]] = n + A.size() + 2 * i;
+                n_stick += stick[A[i]];
               }
-          const unsigned int N = n + A.size() + 2 * S.size();
+          const unsigned int N = n + (coulomb ? 3 : 1) * A.size();
           // (row, column, value) of the contact blocks
           std::vector<std::tuple<unsigned int, unsigned int, double>> entries;
           Vector<double> rhs(N), x(N);
@@ -151,24 +176,26 @@ namespace squeal
               if (!constraints.is_constrained(d))
                 entries.emplace_back(d, col, -scale * v);
           };
-          // A constraint row on the unconstrained DoFs; the constrained
-          // ones (Dirichlet) move to the right-hand side. A row with no free
-          // DoF is met by the boundary conditions: its multiplier is void
-          // (an identity row, value 0).
+          // A constraint row on the unconstrained DoFs, scaled by `scale`;
+          // the constrained ones (Dirichlet) move to the right-hand side,
+          // which gets `value`. A row with no free DoF and nothing else
+          // (`alone`) is met by the boundary conditions: its multiplier is
+          // void (an identity row, value 0).
           std::vector<char> void_row(N, 0);
           const auto constraint_row = [&](unsigned int r, const auto &rows,
-                                          double value) {
+                                          double value, double scale = 1.,
+                                          bool alone = true) {
             bool any = false;
             for (const auto &[d, v] : rows)
               if (constraints.is_constrained(d))
-                value -= v * constraints.get_inhomogeneity(d);
+                value -= scale * v * constraints.get_inhomogeneity(d);
               else
                 {
-                  entries.emplace_back(r, d, v);
+                  entries.emplace_back(r, d, scale * v);
                   any = true;
                 }
-            rhs[r]      = any ? value : 0.;
-            void_row[r] = !any;
+            rhs[r] += (any || !alone) ? value : 0.;
+            void_row[r] = !any && alone;
           };
           for (unsigned int j : A)
             {
@@ -176,20 +203,52 @@ namespace squeal
               constraint_row(column[j], b, -op.gap0[j]);
               // normal force B^T z
               force_column(column[j], b, 1.);
-              if (model != FrictionModel::frictionless && !stick[j])
+              if (model == FrictionModel::steady_sliding)
                 for (unsigned int k = 0; k < 2; ++k)
                   force_column(column[j], slip_row(j, k), mu * dir[j][k]);
+              if (!coulomb)
+                continue;
+              std::array<std::vector<std::pair<types::global_dof_index, double>>,
+                         2>
+                T{{slip_row(j, 0), slip_row(j, 1)}};
+              // s = T u - prev: the slip since the previous load step
+              std::array<double, 2> prev{{-imposed[j][0], -imposed[j][1]}};
+              for (unsigned int k = 0; k < 2; ++k)
+                {
+                  for (const auto &[d, v] : T[k])
+                    prev[k] += v * u_prev[d];
+                  force_column(t_column[j] + k, T[k], 1.);
+                }
+              if (stick[j])
+                // no slip since the previous load step: T_j u = T_j u_prev
+                for (unsigned int k = 0; k < 2; ++k)
+                  constraint_row(t_column[j] + k, T[k], prev[k]);
+              else
+                {
+                  // Slip: t = mu z n(y), y = t - c s the trial traction,
+                  // linearised at the last iterate (semi-smooth Newton,
+                  // Hueber, Stadler & Wohlmuth 2008, the slip branch of
+                  // their eq. 3.5 in the normalised form):
+                  //   (I - a P) t - mu n z + a c P s(u) = 0,
+                  // P = I - n n^T, a = mu z / |y| < 1 at the last iterate.
+                  const std::array<double, 2> &nn = dir[j];
+                  const double                 a  = curl[j];
+                  for (unsigned int k = 0; k < 2; ++k)
+                    {
+                      const unsigned int r = t_column[j] + k;
+                      for (unsigned int l = 0; l < 2; ++l)
+                        {
+                          const double P = (k == l) - nn[k] * nn[l];
+                          entries.emplace_back(r, t_column[j] + l,
+                                               (k == l) - a * P);
+                          if (a != 0. && P != 0.)
+                            constraint_row(r, T[l], a * c[j] * P * prev[l],
+                                           a * c[j] * P, false);
+                        }
+                      entries.emplace_back(r, column[j], -mu * nn[k]);
+                    }
+                }
             }
-          for (unsigned int j : S)
-            for (unsigned int k = 0; k < 2; ++k)
-              {
-                const auto r = slip_row(j, k);
-                double     prev = 0.;
-                for (const auto &[d, v] : r)
-                  prev += v * u_prev[d];
-                constraint_row(t_column[j] + k, r, prev);
-                force_column(t_column[j] + k, r, 1.);
-              }
           DynamicSparsityPattern dsp(N, N);
           for (unsigned int i = 0; i < n; ++i)
             for (auto e = K.begin(i); e != K.end(i); ++e)
@@ -244,18 +303,21 @@ namespace squeal
               s.pressure[j] = x[column[j]];
               for (unsigned int k = 0; k < 2; ++k)
                 s.tangential_traction[j][k] =
-                  stick[j] ? x[t_column[j] + k] :
-                  model != FrictionModel::frictionless ?
-                             mu * s.pressure[j] * dir[j][k] :
-                             0.;
+                  coulomb ? x[t_column[j] + k] :
+                  model == FrictionModel::steady_sliding ?
+                            mu * s.pressure[j] * dir[j][k] :
+                            0.;
             }
 
-          // The new sets.
+          // The new sets, and for Coulomb the slip condition's residual
+          // |t - mu z n(y)| on the slip nodes (relative to mu max z): it
+          // falls super-linearly once the sets stop changing.
           const Vector<double> g = op.weighted_gaps(s.displacement);
           ContactIteration     info;
           std::vector<char>    next(n_s, 0), next_stick(n_s, 0);
           std::vector<std::array<double, 2>> next_dir(dir);
-          double               turn = 0.;
+          std::vector<double>                next_curl(n_s, 0.);
+          double turn = 0., slip_residual = 0., z_max = 0.;
           for (unsigned int j = 0; j < n_s; ++j)
             {
               if (!std::isfinite(op.gap0[j]))
@@ -263,56 +325,75 @@ namespace squeal
               next[j] = s.pressure[j] - c[j] * g[j] > 0.;
               info.changed += next[j] != active[j];
               info.active += next[j];
+              z_max = std::max(z_max, s.pressure[j]);
               if (active[j])
                 info.tension = std::max(info.tension, -s.pressure[j]);
               else
                 info.penetration = std::max(info.penetration, -g[j] / op.D[j]);
-              if (model != FrictionModel::coulomb || !next[j])
+              if (!coulomb || !next[j])
                 continue;
-              // trial traction t - c s against the cone mu z
+              // trial traction y = t - c s against the cone mu z
               const std::array<double, 2> sl = slip_of(j, s.displacement);
-              const std::array<double, 2> trial{
+              const std::array<double, 2> y{
                 {s.tangential_traction[j][0] - c[j] * sl[0],
                  s.tangential_traction[j][1] - c[j] * sl[1]}};
-              const double norm  = std::hypot(trial[0], trial[1]);
+              const double norm  = std::hypot(y[0], y[1]);
               const double bound = mu * std::max(s.pressure[j], 0.);
               next_stick[j]      = norm <= bound || norm == 0.;
               if (!next_stick[j])
                 {
-                  next_dir[j] = {{trial[0] / norm, trial[1] / norm}};
-                  const double dot = next_dir[j][0] * dir[j][0] +
-                                     next_dir[j][1] * dir[j][1];
-                  if (active[j] && !stick[j] && dot < 0.)
+                  next_dir[j]  = {{y[0] / norm, y[1] / norm}};
+                  next_curl[j] = bound / norm;
+                  if (active[j] && !stick[j] &&
+                      next_dir[j][0] * dir[j][0] + next_dir[j][1] * dir[j][1] <
+                        0.)
                     {
-                      // The slip reversed: it passed through zero, so the
-                      // node sticks (this also breaks the two-cycle of a
-                      // node flipping between opposite directions).
+                      // The slip reversed within one iteration: it passed
+                      // through zero, so the node sticks next (this breaks
+                      // the two-cycle of a node flipping between opposite
+                      // directions).
                       next_stick[j] = true;
                       next_dir[j]   = dir[j];
+                      next_curl[j]  = 0.;
                     }
-                  else if (!stick[j])
-                    turn = std::max(turn,
-                                    std::hypot(next_dir[j][0] - dir[j][0],
-                                               next_dir[j][1] - dir[j][1]));
+                  else if (active[j] && !stick[j])
+                    {
+                      turn = std::max(turn,
+                                      std::hypot(next_dir[j][0] - dir[j][0],
+                                                 next_dir[j][1] - dir[j][1]));
+                      slip_residual = std::max(
+                        slip_residual,
+                        std::hypot(s.tangential_traction[j][0] -
+                                     bound * next_dir[j][0],
+                                   s.tangential_traction[j][1] -
+                                     bound * next_dir[j][1]));
+                    }
                 }
               info.changed += next[j] == active[j] && next_stick[j] != stick[j];
               info.stick += next_stick[j];
             }
+          slip_residual /= std::max(mu * z_max, 1e-300);
+          info.slip_residual = slip_residual;
           s.history.push_back(info);
           if (log)
             *log << "  active-set iteration " << std::setw(2) << it + 1
                  << ": " << A.size() << " active ("
-                 << (model == FrictionModel::coulomb ?
-                       std::to_string(S.size()) + " stick" :
-                       std::string("-"))
+                 << (coulomb ? std::to_string(n_stick) + " stick" :
+                               std::string("-"))
                  << "), " << info.changed << " change set, largest penetration "
                  << std::setprecision(3) << info.penetration
                  << " m, largest tension " << info.tension << " Pa"
-                 << (model == FrictionModel::coulomb ?
-                       ", slip directions turned by " + std::to_string(turn) :
-                       std::string())
+                 << (coulomb ? ", slip residual " +
+                                 [&] {
+                                   std::ostringstream o;
+                                   o << std::setprecision(3) << slip_residual;
+                                   return o.str();
+                                 }() +
+                                 ", slip directions turned by " +
+                                 std::to_string(turn) :
+                               std::string())
                  << std::endl;
-          if (info.changed == 0 && turn < 1e-8)
+          if (info.changed == 0 && slip_residual < 1e-10)
             {
               s.gap.reinit(n_s);
               s.status.assign(n_s, 0);
@@ -329,8 +410,8 @@ namespace squeal
                   s.slip[j]     = {{sl[0] / op.D[j], sl[1] / op.D[j]}};
                   s.status[j] =
                     model == FrictionModel::frictionless ? 1 :
-                    model == FrictionModel::coulomb && stick[j] ? 1 :
-                                                                  2;
+                    coulomb && stick[j]                  ? 1 :
+                                                           2;
                   s.normal_force += op.D[j] * s.pressure[j];
                   s.contact_area += op.D[j];
                   for (unsigned int k = 0; k < 2; ++k)
@@ -350,6 +431,7 @@ namespace squeal
           active = next;
           stick  = next_stick;
           dir    = next_dir;
+          curl   = next_curl;
         }
       std::ostringstream sizes;
       for (const auto &h : s.history)
@@ -385,6 +467,7 @@ namespace squeal
           f.sadd(1. - target, target, f_end);
           settings.previous_displacement = state.displacement;
           settings.initial_status        = state.status;
+          settings.initial_traction      = state.tangential_traction;
           try
             {
               ContactSolution next =

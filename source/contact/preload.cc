@@ -187,6 +187,7 @@ namespace squeal
                      FrictionModel::frictionless;
       s.friction_coefficient = prm.interface.friction_coefficient;
       s.sliding_direction    = prm.interface.sliding_tangent();
+      s.master_slip          = prm.preload.disc_slip * s.sliding_direction;
       std::ostream *log = Utilities::MPI::this_mpi_process(comm) == 0 ?
                             &std::cout :
                             nullptr;

@@ -91,11 +91,10 @@ namespace squeal
                         "along the disc's sliding direction (Interface/"
                         "Sliding direction), traction mu p, as in CEA "
                         "practice; coulomb: stick/slip from the incremental "
-                        "Coulomb law, the load in Load steps increments "
-                        "(verified on the Cattaneo-Mindlin problem; on the "
-                        "TriboBrake its stick/slip sets can still cycle, and "
-                        "the run then stops with the active-set history); "
-                        "frictionless. mu is Interface/Friction coefficient.");
+                        "Coulomb law (semi-smooth Newton), the load in Load "
+                        "steps increments, the disc at rest or turning by "
+                        "Disc slip per step; frictionless. mu is "
+                        "Interface/Friction coefficient.");
       prm.declare_entry("Search distance", str(search_distance),
                         Patterns::Double(1e-9),
                         "How far along the pad face's normal the disc face is "
@@ -106,6 +105,15 @@ namespace squeal
                         "Increments of the normal force; each step's "
                         "contact state is written (contact_step_NNN.csv, "
                         "contact.pvd). With coulomb the path matters.");
+      prm.declare_entry("Disc slip per step", str(disc_slip),
+                        Patterns::Double(0.),
+                        "With Friction = coulomb: how far the disc's surface "
+                        "moves under the pad along Interface/Sliding "
+                        "direction during each load step [m] (the disc "
+                        "turning); 0 keeps the disc at rest, so only the "
+                        "pad's own deformation slips. A slip much larger than "
+                        "the elastic one makes every node in contact slip and "
+                        "reproduces steady sliding.");
       prm.leave_subsection();
     }
 
@@ -117,7 +125,12 @@ namespace squeal
       friction        = prm.get("Friction");
       search_distance = prm.get_double("Search distance");
       load_steps      = prm.get_integer("Load steps");
+      disc_slip       = prm.get_double("Disc slip per step");
       prm.leave_subsection();
+      check(disc_slip == 0. || friction == "coulomb",
+            "Preload/Disc slip per step = " + str(disc_slip) +
+              " needs Preload/Friction = coulomb (got " + friction +
+              "): the other friction laws have no slip history");
     }
 
     void

@@ -19,6 +19,15 @@ Runs build/squeal on the coarse preload and checks:
 - 4 load steps: a contact table and a pad-face file per step, listed in
   contact.pvd, and the same final state as one step (steady sliding is
   path-independent);
+- Coulomb stick/slip, disc at rest, 2 load steps: the semi-smooth Newton
+  iteration converges (at most 15 iterations per step), its slip residual
+  falls super-linearly once the sets stop changing (each step's ratio
+  smaller than the one before, last residual below 1e-10), the normal force
+  is 100 N and both stick and slip nodes exist;
+- Coulomb with the disc turning 0.1 m per load step (a slip 10^4-10^5 x the
+  elastic one): every node in contact slips, and the state is the steady
+  sliding one (pressures and tractions within 0.5 % of the peak pressure,
+  friction mu N within 1e-3, the springs hold it back within 1e-3);
 - a second run into the same directory is refused.
 """
 import csv
@@ -48,6 +57,7 @@ def run(name, extra=""):
     r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
     if r.returncode != 0:
         fail(f"{name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
+    run.stdout = r.stdout
     summary = {}
     for line in open(os.path.join(out, "preload_summary.txt")):
         k, v = line.split()
@@ -124,6 +134,60 @@ if abs(s4["friction_force_N"] - s["friction_force_N"]) > 1e-8 * N:
     fail("steady sliding in 4 steps ends elsewhere than in one")
 print("preload in 4 load steps: a table and a pad-face file per step, the "
       "same final state as in one step: ok")
+
+# Coulomb stick/slip, disc at rest: per load step, the iterations and the
+# slip residuals of the tail in which no node changes set.
+_, sc, rc = run("coulomb", "subsection Preload\n  set Friction = coulomb\n"
+                "  set Load steps = 2\nend\n")
+steps, current = [], []
+for line in run.stdout.splitlines():
+    if "active-set iteration" in line:
+        changed = int(line.split("), ")[1].split()[0])
+        res = float(line.split("slip residual ")[1].split(",")[0])
+        current.append((changed, res))
+    elif "load factor 1 converged" in line:
+        steps.append(current)
+        current = []
+if len(steps) != 2:
+    fail(f"coulomb: {len(steps)} converged load steps, not 2")
+for k, its in enumerate(steps):
+    if len(its) > 15:
+        fail(f"coulomb: load step {k + 1} took {len(its)} iterations (> 15)")
+    tail = []
+    for changed, res in reversed(its):
+        if changed:
+            break
+        tail.insert(0, res)
+    if tail[-1] > 1e-10:
+        fail(f"coulomb: load step {k + 1} ends at slip residual {tail[-1]}")
+    nonzero = [r for r in tail if r > 0]
+    ratios = [b / a for a, b in zip(nonzero, nonzero[1:])]
+    if any(q2 >= q1 for q1, q2 in zip(ratios, ratios[1:])):
+        fail(f"coulomb: load step {k + 1} residuals {tail} not super-linear")
+    print(f"coulomb load step {k + 1}: {len(its)} iterations, slip residuals "
+          f"of the fixed sets {', '.join(f'{r:.2e}' for r in tail)}")
+status = [int(r["status"]) for r in rc]
+if abs(sc["normal_force_N"] / N - 1) > 1e-8 or 1 not in status or 2 not in status:
+    fail(f"coulomb: normal force {sc['normal_force_N']}, statuses {set(status)}")
+print(f"coulomb, disc at rest: {status.count(1)} stick, {status.count(2)} slip, "
+      "converged super-linearly: ok")
+
+_, st, rt = run("coulomb_turning", "subsection Preload\n  set Friction = coulomb\n"
+                "  set Load steps = 2\n  set Disc slip per step = 0.1\nend\n")
+if any(int(a["status"]) != (2 if int(b["status"]) else 0) for a, b in zip(rt, rows)):
+    fail("coulomb, disc turning: not every node in contact slips, or the "
+         "contact zone differs from steady sliding")
+worst = max(abs(float(a[k]) - float(b[k])) for a, b in zip(rt, rows)
+            for k in ("p_N_Pa", "t_T1_Pa", "t_T2_Pa"))
+if worst > 5e-3 * p_peak:
+    fail(f"coulomb, disc turning: {worst / p_peak:.2e} of the peak pressure "
+         "from steady sliding")
+if abs(st["friction_force_N"] / (mu * N) - 1) > 1e-3 or \
+        abs(st["spring_force_N"] / (mu * N) - 1) > 1e-3:
+    fail(f"coulomb, disc turning: friction {st['friction_force_N']}, "
+         f"springs {st['spring_force_N']}")
+print(f"coulomb, disc turning 0.1 m per step: steady sliding within "
+      f"{worst / p_peak:.1e} of the peak pressure: ok")
 
 again = subprocess.run([squeal, "sliding.prm"], capture_output=True, text=True)
 if again.returncode == 0 or "exists" not in again.stderr:

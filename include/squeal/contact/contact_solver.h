@@ -25,8 +25,13 @@
  *   inside the cone mu z_j, slip (t_j = mu z_j d_j, d_j the trial
  *   traction's direction) outside it: the return map of Alart & Curnier
  *   (CMAME 92, 1991) in the set form of Hueber, Stadler & Wohlmuth (SIAM J.
- *   Sci. Comput. 30, 2008), iterated with the stick/slip sets and the slip
- *   directions until none changes.
+ *   Sci. Comput. 30, 2008). The slip condition t_j = mu z_j y_j / |y_j|,
+ *   y_j = t_j - c_j s_j, is linearised at the last iterate (semi-smooth
+ *   Newton): (I - a_j P_j) t_j - mu n_j z_j + a_j c_j P_j s_j = 0 with
+ *   n_j = y_j / |y_j|, P_j = I - n_j n_j^T, a_j = mu z_j / |y_j|, so the
+ *   iteration converges super-linearly once the sets stop changing; it
+ *   stops when no node changes set and the slip residual
+ *   |t_j - mu z_j n_j| is below 1e-10 mu max z.
  * The augmented system is solved by UMFPACK.
  */
 
@@ -67,10 +72,17 @@ namespace squeal
       /// `coulomb`: the displacement of the previous load step (slip
       /// increments are measured from it), n_dofs; empty: zero
       dealii::Vector<double> previous_displacement;
+      /// `coulomb`: rigid displacement of the master surface during the
+      /// load step [m] (a turning disc: its slip under the pad), added to
+      /// every node's slip; zero: the master at rest
+      dealii::Tensor<1, 3> master_slip;
       /// the status (0 separated, 1 stick, 2 slip) of each slave node at
       /// the previous load step, the first guess of the sets; empty: the
       /// nodes closed in the reference state, stuck
       std::vector<int> initial_status;
+      /// n_s x 2, with initial_status: the tangential traction of the
+      /// previous load step; a slipping node's first slip direction
+      std::vector<std::array<double, 2>> initial_traction;
     };
 
     /** One active-set iteration, for the convergence report. */
@@ -81,6 +93,9 @@ namespace squeal
       unsigned int stick = 0;       ///< nodes that stick
       double       penetration = 0.;///< largest -g_j / D_jj [m] off A
       double       tension = 0.;    ///< largest -z_j [Pa] on A
+      /// Coulomb: largest |t_j - mu z_j n_j| over the slip nodes, relative
+      /// to mu max z (n_j the direction of the trial traction)
+      double       slip_residual = 0.;
     };
 
     /** The converged state. */

@@ -284,6 +284,9 @@ namespace squeal
       std::string  friction = "steady sliding";  ///< or `coulomb`, `frictionless`
       double       search_distance = 1e-3;       ///< m, contact search reach
       unsigned int load_steps = 1;               ///< increments of the load
+      /// m: `coulomb` only, how far the disc turns under the pad (along
+      /// Interface/Sliding direction) during each load step; 0: at rest
+      double       disc_slip = 0.;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };
