@@ -7,7 +7,11 @@
 // of a node is its own unknown (no coupling through a mass matrix), which
 // keeps the active-set update node-wise.
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/petsc_solver.h>
+#include <deal.II/lac/petsc_vector.h>
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparsity_pattern.h>
 
@@ -44,17 +48,165 @@ namespace squeal
           }
         return r;
       }
+
+      // The augmented system [K + contact columns; contact rows] x = rhs,
+      // N x N, solved directly. entries: the contact blocks (row, column,
+      // value), the same on every rank; void_row: multiplier rows with no
+      // free DoF (identity). Throws std::runtime_error("singular") if the
+      // solve fails or its residual is not small.
+      Vector<double>
+      solve_augmented(
+        const ContactStiffness &K,
+        const unsigned int      N,
+        const std::vector<std::tuple<unsigned int, unsigned int, double>>
+                                &entries,
+        const Vector<double>    &rhs,
+        const std::vector<char> &void_row)
+      {
+        const unsigned int n = K.size();
+        Vector<double>     x(N);
+        if (K.serial)
+          {
+            const SparseMatrix<double> &Ks = *K.serial;
+            DynamicSparsityPattern      dsp(N, N);
+            for (unsigned int i = 0; i < n; ++i)
+              for (auto e = Ks.begin(i); e != Ks.end(i); ++e)
+                dsp.add(i, e->column());
+            for (const auto &[r, col, v] : entries)
+              dsp.add(r, col);
+            for (unsigned int i = n; i < N; ++i)
+              dsp.add(i, i);
+            SparsityPattern sp;
+            sp.copy_from(dsp);
+            SparseMatrix<double> A(sp);
+            for (unsigned int i = 0; i < n; ++i)
+              for (auto e = Ks.begin(i); e != Ks.end(i); ++e)
+                A.set(i, e->column(), e->value());
+            for (const auto &[r, col, v] : entries)
+              A.add(r, col, v);
+            for (unsigned int i = n; i < N; ++i)
+              if (void_row[i])
+                A.set(i, i, 1.);
+            SparseDirectUMFPACK direct;
+            direct.initialize(A);
+            direct.vmult(x, rhs);
+            // UMFPACK may return garbage for a singular matrix instead of
+            // failing: check the residual.
+            Vector<double> r(N);
+            A.vmult(r, x);
+            r -= rhs;
+            if (!std::isfinite(x.l2_norm()) ||
+                r.l2_norm() > 1e-6 * std::max(rhs.l2_norm(), 1e-300))
+              throw std::runtime_error("singular");
+            return x;
+          }
+        // Distributed: each rank its rows of K, the last rank also the
+        // contact rows n..N-1 (PETSc wants contiguous ranges in rank order).
+        const PETScWrappers::MPI::SparseMatrix &Kd = *K.distributed;
+        const auto         range = Kd.local_range();
+        const unsigned int rank  = Utilities::MPI::this_mpi_process(K.comm),
+                           size  = Utilities::MPI::n_mpi_processes(K.comm);
+        IndexSet           owned(N);
+        owned.add_range(range.first, range.second);
+        if (rank == size - 1)
+          owned.add_range(n, N);
+        DynamicSparsityPattern dsp(N, N, owned);
+        for (auto i = range.first; i < range.second; ++i)
+          for (auto e = Kd.begin(i); e != Kd.end(i); ++e)
+            dsp.add(i, e->column());
+        for (const auto &[r, col, v] : entries)
+          if (owned.is_element(r))
+            dsp.add(r, col);
+        for (unsigned int i = n; i < N; ++i)
+          if (owned.is_element(i))
+            dsp.add(i, i);
+        PETScWrappers::MPI::SparseMatrix A;
+        A.reinit(owned, owned, dsp, K.comm);
+        for (auto i = range.first; i < range.second; ++i)
+          for (auto e = Kd.begin(i); e != Kd.end(i); ++e)
+            A.set(i, e->column(), e->value());
+        A.compress(VectorOperation::insert);
+        for (const auto &[r, col, v] : entries)
+          if (owned.is_element(r))
+            A.add(r, col, v);
+        for (unsigned int i = n; i < N; ++i)
+          if (owned.is_element(i) && void_row[i])
+            A.add(i, i, 1.);
+        A.compress(VectorOperation::add);
+        PETScWrappers::MPI::Vector b(owned, K.comm), xd(owned, K.comm),
+          res(owned, K.comm);
+        for (const auto i : owned)
+          b[i] = rhs[i];
+        b.compress(VectorOperation::insert);
+        SolverControl                      control(1, 0.);
+        PETScWrappers::SparseDirectMUMPS   mumps(control, K.comm);
+        bool                               failed = false;
+        try
+          {
+            mumps.solve(A, xd, b);
+            A.vmult(res, xd);
+            res -= b;
+            failed = !std::isfinite(xd.l2_norm()) ||
+                     res.l2_norm() > 1e-6 * std::max(b.l2_norm(), 1e-300);
+          }
+        catch (const std::exception &)
+          {
+            failed = true;
+          }
+        if (Utilities::MPI::logical_or(failed, K.comm))
+          throw std::runtime_error("singular");
+        x = Vector<double>(xd); // gathered on every rank
+        return x;
+      }
     } // namespace
 
+    ContactStiffness::ContactStiffness(const SparseMatrix<double> &K)
+      : serial(&K)
+      , comm(MPI_COMM_SELF)
+    {}
+
+    ContactStiffness::ContactStiffness(
+      const PETScWrappers::MPI::SparseMatrix &K,
+      MPI_Comm                                comm)
+      : distributed(&K)
+      , comm(comm)
+    {}
+
+    unsigned int
+    ContactStiffness::size() const
+    {
+      return serial ? serial->m() : distributed->m();
+    }
+
+    std::vector<double>
+    ContactStiffness::diagonal(
+      const std::vector<types::global_dof_index> &dofs) const
+    {
+      std::vector<double> d(dofs.size(), 0.);
+      if (serial)
+        {
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            d[i] = serial->diag_element(dofs[i]);
+          return d;
+        }
+      const auto range = distributed->local_range();
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+        if (dofs[i] >= range.first && dofs[i] < range.second)
+          d[i] = distributed->diag_element(dofs[i]);
+      const std::vector<double> local = d;
+      Utilities::MPI::sum(local, comm, d);
+      return d;
+    }
+
     ContactSolution
-    solve_static_contact(const SparseMatrix<double>      &K,
+    solve_static_contact(const ContactStiffness          &K,
                          const Vector<double>            &f,
                          const AffineConstraints<double> &constraints,
                          const MortarOperators           &op,
                          const ContactSettings           &settings,
                          std::ostream                    *log)
     {
-      const unsigned int n = K.m(), n_s = op.n_slave();
+      const unsigned int n = K.size(), n_s = op.n_slave();
       const double       mu = settings.friction_coefficient;
       if (mu < 0.)
         throw std::runtime_error(
@@ -72,6 +224,11 @@ namespace squeal
       std::vector<std::array<Tensor<1, 3>, 2>> frame(n_s);
       std::vector<std::array<double, 2>>       slide(n_s);
       std::vector<double>                      c(n_s);
+      std::vector<types::global_dof_index>     slave_dofs;
+      for (unsigned int j = 0; j < n_s; ++j)
+        for (unsigned int d = 0; d < 3; ++d)
+          slave_dofs.push_back(op.slave_dofs[j][d]);
+      const std::vector<double> k_diag = K.diagonal(slave_dofs);
       for (unsigned int j = 0; j < n_s; ++j)
         {
           frame[j] = {{op.tangents1[j], op.tangents2[j]}};
@@ -82,7 +239,7 @@ namespace squeal
           slide[j] = {{t * frame[j][0], t * frame[j][1]}};
           double k = 0.;
           for (unsigned int d = 0; d < 3; ++d)
-            k += K.diag_element(op.slave_dofs[j][d]) *
+            k += k_diag[3 * j + d] *
                  std::abs(op.normals[j][d]);
           c[j] = k / (op.D[j] * op.D[j]);
         }
@@ -249,39 +406,9 @@ namespace squeal
                     }
                 }
             }
-          DynamicSparsityPattern dsp(N, N);
-          for (unsigned int i = 0; i < n; ++i)
-            for (auto e = K.begin(i); e != K.end(i); ++e)
-              dsp.add(i, e->column());
-          for (const auto &[r, col, v] : entries)
-            dsp.add(r, col);
-          for (unsigned int i = n; i < N; ++i)
-            dsp.add(i, i);
-          SparsityPattern sp;
-          sp.copy_from(dsp);
-          SparseMatrix<double> S_mat(sp);
-          for (unsigned int i = 0; i < n; ++i)
-            for (auto e = K.begin(i); e != K.end(i); ++e)
-              S_mat.set(i, e->column(), e->value());
-          for (const auto &[r, col, v] : entries)
-            S_mat.add(r, col, v);
-          for (unsigned int i = n; i < N; ++i)
-            if (void_row[i])
-              S_mat.set(i, i, 1.);
-
-          SparseDirectUMFPACK direct;
           try
             {
-              direct.initialize(S_mat);
-              direct.vmult(x, rhs);
-              // UMFPACK may return garbage for a singular matrix instead of
-              // failing: check the residual.
-              Vector<double> r(N);
-              S_mat.vmult(r, x);
-              r -= rhs;
-              if (!std::isfinite(x.l2_norm()) ||
-                  r.l2_norm() > 1e-6 * std::max(rhs.l2_norm(), 1e-300))
-                throw std::runtime_error("singular");
+              x = solve_augmented(K, N, entries, rhs, void_row);
             }
           catch (const std::exception &)
             {
@@ -444,7 +571,7 @@ namespace squeal
     }
 
     ContactSolution
-    solve_contact_load_steps(const SparseMatrix<double>      &K,
+    solve_contact_load_steps(const ContactStiffness          &K,
                              const Vector<double>            &f_start,
                              const Vector<double>            &f_end,
                              const ContactSolution           &start,

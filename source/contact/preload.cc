@@ -81,6 +81,61 @@ namespace squeal
       return {held, support_points[held]};
     }
 
+    Point<3>
+    tribobrake_contact_system(const physics::StructuralModel &model,
+                              physics::PETScMatrix           &stiffness,
+                              AffineConstraints<double>      &constraints,
+                              MPI_Comm                        comm)
+    {
+      const auto &prm = model.prm;
+      const physics::MatrixParts parts = model.parts();
+      parts.combine(parts.coefficients(prm.nominal_point()).structural,
+                    stiffness);
+      const unsigned int n = model.n_dofs();
+      // Constraints on all DoFs, identical on every rank (the model's hold
+      // only the locally relevant ones): hanging nodes over the whole shared
+      // mesh, the clamped faces, the radial hold.
+      const auto [points, component] = physics::dof_support_points(model);
+      constraints.clear();
+      DoFTools::make_hanging_node_constraints(model.dof_handler, constraints);
+      std::vector<types::global_dof_index> face_dofs(
+        model.fe.n_dofs_per_face());
+      for (const auto &cell : model.dof_handler.active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == geometry::boundary::clamped)
+            {
+              cell->face(f)->get_dof_indices(face_dofs);
+              for (const auto i : face_dofs)
+                if (!constraints.is_constrained(i))
+                  constraints.add_line(i);
+            }
+      const auto    &g = prm.geometry;
+      const Point<3> centre(g.pad_radius, 0., g.pad_size + g.support_length);
+      types::global_dof_index held = 0;
+      double                  best = 1e300;
+      for (types::global_dof_index d = 0; d < n; ++d)
+        if (component[d] == 0 && points[d].distance(centre) < best)
+          {
+            best = points[d].distance(centre);
+            held = d;
+          }
+      if (!constraints.is_constrained(held))
+        {
+          constraints.add_line(held);
+          // its row: the diagonal alone (its column multiplies x_held = 0)
+          const auto range = stiffness.local_range();
+          const bool mine  = held >= range.first && held < range.second;
+          const double diag =
+            Utilities::MPI::sum(mine ? stiffness.diag_element(held) : 0., comm);
+          stiffness.clear_rows(mine ? std::vector<types::global_dof_index>{held} :
+                                      std::vector<types::global_dof_index>{},
+                               diag);
+        }
+      constraints.close();
+      return points[held];
+    }
+
     Vector<double>
     support_top_load(const physics::StructuralModel  &model,
                      const AffineConstraints<double> &constraints,
@@ -140,21 +195,22 @@ namespace squeal
     PreloadAnalysis::setup_system()
     {
       TimerOutput::Scope t(timer, "setup and assembly");
-      if (Utilities::MPI::n_mpi_processes(comm) > 1)
-        throw std::runtime_error(
-          "the preload is serial for now (one direct solve of the contact "
-          "system); run it without mpirun");
       work_dir =
         output::partial_directory(prm.output.directory, prm.output.overwrite);
-      output::fresh_directory(work_dir);
-      {
-        std::ofstream out(fs::path(work_dir) / "parameters.prm");
-        handler.print_parameters(out, ParameterHandler::PRM);
-      }
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          output::fresh_directory(work_dir);
+          std::ofstream out(fs::path(work_dir) / "parameters.prm");
+          handler.print_parameters(out, ParameterHandler::PRM);
+        }
+      MPI_Barrier(comm);
       model.setup_and_assemble(pcout);
 
       const Point<3> held =
-        tribobrake_contact_system(model, pattern, stiffness, constraints).second;
+        Utilities::MPI::n_mpi_processes(comm) == 1 ?
+          tribobrake_contact_system(model, pattern, stiffness, constraints)
+            .second :
+          tribobrake_contact_system(model, stiffness_mpi, constraints, comm);
       pcout << "Preload: " << model.n_dofs()
             << " DoFs; radial displacement held at (" << held[0] << ", "
             << held[1] << ", " << held[2] << ") m" << std::endl;
@@ -206,7 +262,11 @@ namespace squeal
             *log << "Load step " << k << " of " << n_steps << ": "
                  << prm.preload.normal_force * k / n_steps << " N"
                  << std::endl;
-          state = solve_contact_load_steps(stiffness, previous, f, state,
+          const ContactStiffness K =
+            Utilities::MPI::n_mpi_processes(comm) == 1 ?
+              ContactStiffness(stiffness) :
+              ContactStiffness(stiffness_mpi, comm);
+          state = solve_contact_load_steps(K, previous, f, state,
                                            constraints, mortar, s, 1, 6, log);
           previous = f;
           const std::string step = Utilities::int_to_string(k, 3);
@@ -216,28 +276,21 @@ namespace squeal
                              "contact_surface_" + step + ".vtu");
         }
 
-      // What the springs carry along the sliding direction.
+      // What the springs carry along the sliding direction (each rank its
+      // own rows of the spring matrix, summed).
       physics::PETScVector u(model.locally_owned_dofs, comm),
         r(model.locally_owned_dofs, comm);
-      for (unsigned int i = 0; i < model.n_dofs(); ++i)
+      for (const auto i : model.locally_owned_dofs)
         u[i] = state.displacement[i];
       u.compress(VectorOperation::insert);
       model.stiffness_springs.vmult(r, u);
       const Tensor<1, 3> slide = prm.interface.sliding_tangent();
-      spring_reaction          = 0.;
-      std::vector<types::global_dof_index> dofs(model.fe.n_dofs_per_cell());
-      std::vector<bool>                    seen(model.n_dofs(), false);
-      for (const auto &cell : model.dof_handler.active_cell_iterators())
-        {
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            if (!seen[dofs[i]])
-              {
-                seen[dofs[i]] = true;
-                spring_reaction +=
-                  r[dofs[i]] * slide[model.fe.system_to_component_index(i).first];
-              }
-        }
+      const std::vector<unsigned int> component =
+        physics::dof_support_points(model).second;
+      spring_reaction = 0.;
+      for (const auto i : model.locally_owned_dofs)
+        spring_reaction += r[i] * slide[component[i]];
+      spring_reaction = Utilities::MPI::sum(spring_reaction, comm);
       // The k_ref scaling: the parts hold springs at the reference value.
       spring_reaction *=
         prm.nominal_point().spring_stiffness / model.parts().reference.spring_stiffness;
@@ -258,8 +311,9 @@ namespace squeal
     PreloadAnalysis::write_contact(const std::string &csv_name,
                                    const std::string &vtu_name) const
     {
-      if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
+      // Collective: the contact state is the same on every rank; rank 0
+      // writes the table and the whole pad face.
+      const bool         root = Utilities::MPI::this_mpi_process(comm) == 0;
       const fs::path     dir(work_dir);
       const unsigned int n_s = mortar.n_slave();
       // The tangential traction as a nodal field too (the same L2
@@ -276,6 +330,7 @@ namespace squeal
         }
       along    = mortar.nodal_pressure(along);
       across_t = mortar.nodal_pressure(across_t);
+      if (root)
       {
         std::ofstream out(dir / csv_name);
         out << "x_m,y_m,z_m,p_N_Pa,t_T1_Pa,t_T2_Pa,gap_m,status\n"
@@ -303,21 +358,27 @@ namespace squeal
                           std::vector<std::string>{"contact_pressure_Pa",
                                                    "friction_traction_Pa",
                                                    "status"});
-      out.build_patches(model.mapping, model.fe.degree);
-      std::ofstream vtu(dir / vtu_name);
-      out.write_vtu(vtu);
+      if (root)
+        {
+          out.build_patches(model.mapping, model.fe.degree);
+          std::ofstream vtu(dir / vtu_name);
+          out.write_vtu(vtu);
+        }
     }
 
     void
     PreloadAnalysis::output_results() const
     {
       TimerOutput::Scope t(timer, "output");
-      if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
-      const fs::path dir(work_dir);
       // contact.csv and contact_surface.vtu: the final state; contact.pvd:
       // every load step (time = load factor)
       write_contact("contact.csv", "contact_surface.vtu");
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        {
+          write_displacement();
+          return;
+        }
+      const fs::path dir(work_dir);
       {
         std::ofstream pvd(dir / "contact.pvd");
         DataOutBase::write_pvd_record(pvd, steps);
@@ -331,6 +392,13 @@ namespace squeal
             << "\nactive_set_iterations " << state.history.size()
             << "\nload_steps " << steps.size() << "\n";
       }
+      write_displacement();
+    }
+
+    void
+    PreloadAnalysis::write_displacement() const
+    {
+      // every rank its own cells (DataOut takes the locally owned ones)
       DataOut<3> out;
       out.attach_dof_handler(model.dof_handler);
       out.add_data_vector(
@@ -339,8 +407,8 @@ namespace squeal
         std::vector<DataComponentInterpretation::DataComponentInterpretation>(
           3, DataComponentInterpretation::component_is_part_of_vector));
       out.build_patches(model.mapping, 1);
-      std::ofstream vtu(dir / "displacement.vtu");
-      out.write_vtu(vtu);
+      out.write_vtu_in_parallel(
+        (fs::path(work_dir) / "displacement.vtu").string(), comm);
     }
 
     void
@@ -350,7 +418,10 @@ namespace squeal
       assemble_load();
       solve();
       output_results();
-      output::publish_directory(work_dir, prm.output.directory);
+      MPI_Barrier(comm);
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        output::publish_directory(work_dir, prm.output.directory);
+      MPI_Barrier(comm);
       pcout << "Results in " << prm.output.directory << std::endl;
     }
   } // namespace contact

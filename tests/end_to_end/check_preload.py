@@ -28,6 +28,9 @@ Runs build/squeal on the coarse preload and checks:
   elastic one): every node in contact slips, and the state is the steady
   sliding one (pressures and tractions within 0.5 % of the peak pressure,
   friction mu N within 1e-3, the springs hold it back within 1e-3);
+- MPI: `mpirun -np 2` (MUMPS on the distributed structure) gives the serial
+  run's pressures and tractions (1e-8 of the peak pressure), statuses and
+  forces, for steady sliding and for Coulomb with the disc at rest;
 - a second run into the same directory is refused.
 """
 import csv
@@ -49,12 +52,14 @@ def fail(msg):
     sys.exit(1)
 
 
-def run(name, extra=""):
+def run(name, extra="", mpi=0):
     out = os.path.abspath(name)
     shutil.rmtree(out, ignore_errors=True)
     with open(name + ".prm", "w") as f:
         f.write(f"include {prm}\n{extra}subsection Output\n  set Directory = {out}\nend\n")
-    r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
+    launcher = ["mpirun", "-np", str(mpi)] if mpi else []
+    r = subprocess.run(launcher + [squeal, name + ".prm"], capture_output=True,
+                       text=True)
     if r.returncode != 0:
         fail(f"{name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
     run.stdout = r.stdout
@@ -188,6 +193,26 @@ if abs(st["friction_force_N"] / (mu * N) - 1) > 1e-3 or \
          f"springs {st['spring_force_N']}")
 print(f"coulomb, disc turning 0.1 m per step: steady sliding within "
       f"{worst / p_peak:.1e} of the peak pressure: ok")
+
+# MPI: the same states on 2 ranks.
+for name, extra, serial_rows, serial_s in [
+        ("sliding_np2", "", rows, s),
+        ("coulomb_np2", "subsection Preload\n  set Friction = coulomb\n"
+         "  set Load steps = 2\nend\n", rc, sc)]:
+    out2, s2, r2 = run(name, extra, mpi=2)
+    worst = max(abs(float(a[k]) - float(b[k])) for a, b in zip(r2, serial_rows)
+                for k in ("p_N_Pa", "t_T1_Pa", "t_T2_Pa"))
+    if len(r2) != len(serial_rows) or worst > 1e-8 * p_peak or \
+            any(a["status"] != b["status"] for a, b in zip(r2, serial_rows)):
+        fail(f"{name}: {worst / p_peak:.2e} of the peak pressure from the "
+             "serial run, or other statuses")
+    for key in ("normal_force_N", "friction_force_N", "spring_force_N"):
+        if abs(s2[key] - serial_s[key]) > 1e-8 * N:
+            fail(f"{name}: {key} {s2[key]} against {serial_s[key]} serial")
+    if not os.path.isfile(os.path.join(out2, "displacement.vtu")):
+        fail(f"{name}: no displacement.vtu")
+    print(f"{name}: mpirun -np 2 = serial ({worst / p_peak:.1e} of the peak "
+          "pressure): ok")
 
 again = subprocess.run([squeal, "sliding.prm"], capture_output=True, text=True)
 if again.returncode == 0 or "exists" not in again.stderr:

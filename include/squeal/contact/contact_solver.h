@@ -32,11 +32,14 @@
  *   iteration converges super-linearly once the sets stop changing; it
  *   stops when no node changes set and the slip residual
  *   |t_j - mu z_j n_j| is below 1e-10 mu max z.
- * The augmented system is solved by UMFPACK.
+ * The augmented system is solved by UMFPACK (serial) or MUMPS (MPI: each
+ * rank its rows of the structure, the contact rows replicated; the active
+ * sets are updated identically on every rank from the gathered solution).
  */
 
 #include <deal.II/base/tensor.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -51,6 +54,35 @@ namespace squeal
 {
   namespace contact
   {
+    /**
+     * The structure's stiffness [N/m] as the contact solver sees it: a
+     * serial deal.II matrix (the augmented system is solved by UMFPACK) or
+     * a distributed PETSc matrix whose rows each rank owns in contiguous
+     * ranges (the augmented system is solved by MUMPS across the ranks; the
+     * contact rows are built identically on every rank and owned by the
+     * last one, the solution gathered on every rank). Both are n x n,
+     * assembled with the constraints given to the solver.
+     */
+    struct ContactStiffness
+    {
+      /// serial: keeps a reference to @p K
+      ContactStiffness(const dealii::SparseMatrix<double> &K);
+      /// distributed over @p comm: keeps a reference to @p K
+      ContactStiffness(const dealii::PETScWrappers::MPI::SparseMatrix &K,
+                       MPI_Comm                                        comm);
+      /// number of rows n
+      unsigned int
+      size() const;
+      /// the diagonal entries of @p dofs, on every rank (collective when
+      /// distributed)
+      std::vector<double>
+      diagonal(const std::vector<dealii::types::global_dof_index> &dofs) const;
+
+      const dealii::SparseMatrix<double>             *serial      = nullptr;
+      const dealii::PETScWrappers::MPI::SparseMatrix *distributed = nullptr;
+      MPI_Comm                                        comm;
+    };
+
     /** Friction law of the static contact solver. */
     enum class FrictionModel
     {
@@ -133,7 +165,7 @@ namespace squeal
      * `max_iterations`, or if the direct solver fails (a body not held).
      */
     ContactSolution
-    solve_static_contact(const dealii::SparseMatrix<double>      &K,
+    solve_static_contact(const ContactStiffness                  &K,
                          const dealii::Vector<double>            &f,
                          const dealii::AffineConstraints<double> &constraints,
                          const MortarOperators                   &mortar,
@@ -153,7 +185,7 @@ namespace squeal
      * returned that would look like a converged result.
      */
     ContactSolution
-    solve_contact_load_steps(const dealii::SparseMatrix<double>      &K,
+    solve_contact_load_steps(const ContactStiffness                  &K,
                              const dealii::Vector<double>            &f_start,
                              const dealii::Vector<double>            &f_end,
                              const ContactSolution                   &start,

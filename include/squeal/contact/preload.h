@@ -54,6 +54,20 @@ namespace squeal
                               dealii::AffineConstraints<double> &constraints);
 
     /**
+     * The same system distributed over @p comm: @p stiffness the PETSc
+     * matrix of K_s (each rank its own rows; the held DoF's row reduced to
+     * its diagonal), @p constraints on all DoFs and identical on every rank
+     * (hanging nodes, the clamped faces, the radial hold), built from the
+     * whole parallel::shared mesh. Collective.
+     * @return the held DoF's position [m]
+     */
+    dealii::Point<3>
+    tribobrake_contact_system(const physics::StructuralModel    &model,
+                              physics::PETScMatrix              &stiffness,
+                              dealii::AffineConstraints<double> &constraints,
+                              MPI_Comm                           comm);
+
+    /**
      * The load vector [N] of @p force [N] spread uniformly over the support's
      * top face, pushing the pad towards the disc (-z), with @p constraints.
      * @throws std::runtime_error if the scene has no support top face.
@@ -83,8 +97,10 @@ namespace squeal
        * contact_step_NNN.csv of every load step, preload_summary.txt,
        * contact.pvd (the pad face with its contact fields at every load
        * step, time = load factor) + contact_surface*.vtu, displacement.vtu.
-       * @throws std::runtime_error under mpirun with more than one rank, on
-       * an existing output folder without Output/Overwrite, or when the
+       * Under mpirun the structure's rows are distributed and the
+       * augmented contact system is solved by MUMPS; the contact state is
+       * the same on every rank.
+       * @throws std::runtime_error on an existing output folder without Output/Overwrite, or when the
        * contact solve fails (nothing is renamed then).
        */
       void
@@ -116,6 +132,8 @@ namespace squeal
       void assemble_load();
       void solve();
       void output_results() const;
+      /** displacement.vtu, written by all ranks together. */
+      void write_displacement() const;
       /** Writes the current state's contact table and pad-face fields. */
       void write_contact(const std::string &csv_name,
                          const std::string &vtu_name) const;
@@ -131,6 +149,7 @@ namespace squeal
       dealii::AffineConstraints<double> constraints; ///< model's + radial hold
       dealii::SparsityPattern           pattern;
       dealii::SparseMatrix<double>      stiffness; ///< K_s at the nominal point
+      physics::PETScMatrix              stiffness_mpi; ///< the same, under mpirun
       dealii::Vector<double>            load;      ///< N
       MortarOperators                   mortar;
       ContactSolution                   state;
