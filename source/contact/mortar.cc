@@ -11,6 +11,7 @@
 #include <deal.II/base/geometry_info.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q_eulerian.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/numerics/rtree.h>
 
@@ -97,8 +98,11 @@ namespace squeal
               centre_values.reinit(cell, f);
               face.centre = centre_values.quadrature_point(0);
               face.normal = centre_values.normal_vector(0);
+              // the mapped vertices: a displaced (Eulerian) mapping moves them
+              const auto vertices = mapping.get_vertices(cell);
               for (const unsigned int v : {0u, 1u, 3u, 2u})
-                face.outline.push_back(cell->face(f)->vertex(v));
+                face.outline.push_back(
+                  vertices[GeometryInfo<3>::face_to_cell_vertices(f, v)]);
               face.box = BoundingBox<3>(face.outline);
               faces.push_back(face);
             }
@@ -318,6 +322,16 @@ namespace squeal
           ") within the search distance of " + std::to_string(search_distance) +
           " m");
 
+      op.slave_id        = slave_id;
+      op.master_id       = master_id;
+      op.search_distance = search_distance;
+      op.n_points        = n_points;
+      op.slave_face_size = std::numeric_limits<double>::max();
+      for (const Face &sf : slave)
+        for (unsigned int a = 0; a < 4; ++a)
+          op.slave_face_size =
+            std::min(op.slave_face_size,
+                     sf.outline[a].distance(sf.outline[(a + 1) % 4]));
       op.slave_mass.resize(n_s, n_s);
       op.slave_mass.setFromTriplets(mass.begin(), mass.end());
       op.tangents1.resize(n_s);
@@ -359,6 +373,62 @@ namespace squeal
               "), more than the search distance allows");
         }
       return op;
+    }
+
+    double
+    largest_tangential_slip(const MortarOperators &op,
+                            const Vector<double>  &u,
+                            const Vector<double>  &u_reference)
+    {
+      Vector<double> du(u);
+      du -= u_reference;
+      double largest = 0.;
+      for (unsigned int j = 0; j < op.n_slave(); ++j)
+        if (std::isfinite(op.gap0[j]))
+          largest =
+            std::max(largest,
+                     std::hypot(op.weighted_slip(j, du, op.tangents1[j]),
+                                op.weighted_slip(j, du, op.tangents2[j])) /
+                       op.D[j]);
+      return largest;
+    }
+
+    MortarOperators
+    build_mortar_operators_deformed(const DoFHandler<3>     &dofs,
+                                    const Vector<double>    &u,
+                                    const types::boundary_id slave_id,
+                                    const types::boundary_id master_id,
+                                    const double             search_distance,
+                                    const unsigned int       n_points)
+    {
+      const MappingQEulerian<3, Vector<double>> mapping(dofs.get_fe().degree,
+                                                        dofs, u);
+      MortarOperators op = build_mortar_operators(
+        dofs, mapping, slave_id, master_id, search_distance, n_points);
+      // g(v) = g0' + B'(v - u): the gaps measured from the configuration u
+      for (unsigned int j = 0; j < op.n_slave(); ++j)
+        if (std::isfinite(op.gap0[j]))
+          op.gap0[j] += op.weighted_slip(j, u, op.normals[j]);
+      return op;
+    }
+
+    bool
+    refresh_segmentation(MortarOperators     &op,
+                         const DoFHandler<3> &dofs,
+                         const Vector<double> &u,
+                         Vector<double>      &u_segmented,
+                         const double         fraction)
+    {
+      if (u_segmented.size() != u.size())
+        u_segmented.reinit(u.size());
+      if (!(fraction > 0.) ||
+          largest_tangential_slip(op, u, u_segmented) <=
+            fraction * op.slave_face_size)
+        return false;
+      op = build_mortar_operators_deformed(dofs, u, op.slave_id, op.master_id,
+                                           op.search_distance, op.n_points);
+      u_segmented = u;
+      return true;
     }
   } // namespace contact
 } // namespace squeal

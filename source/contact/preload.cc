@@ -252,6 +252,7 @@ namespace squeal
       // cutting its increment when the active set does not settle. Every
       // step's contact state is written.
       const unsigned int n_steps = prm.preload.load_steps;
+      Vector<double>     segmented; // where the segmentation was built
       Vector<double>     previous(load.size());
       state = ContactSolution();
       for (unsigned int k = 1; k <= n_steps; ++k)
@@ -266,8 +267,22 @@ namespace squeal
             Utilities::MPI::n_mpi_processes(comm) == 1 ?
               ContactStiffness(stiffness) :
               ContactStiffness(stiffness_mpi, comm);
-          state = solve_contact_load_steps(K, previous, f, state,
-                                           constraints, mortar, s, 1, 6, log);
+          const ContactSolution start = state;
+          state = solve_contact_load_steps(K, previous, f, start, constraints,
+                                           mortar, s, 1, 6, log);
+          // Large sliding: the step once more on the segmentation of its
+          // deformed surfaces.
+          if (refresh_segmentation(mortar, model.dof_handler,
+                                   state.displacement, segmented,
+                                   prm.preload.segmentation_refresh))
+            {
+              pcout << "  segmentation rebuilt on the deformed surfaces; "
+                       "load step "
+                    << k << " again" << std::endl;
+              state = solve_contact_load_steps(K, previous, f, start,
+                                               constraints, mortar, s, 1, 6,
+                                               log);
+            }
           previous = f;
           const std::string step = Utilities::int_to_string(k, 3);
           write_contact("contact_step_" + step + ".csv",

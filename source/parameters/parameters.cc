@@ -114,6 +114,15 @@ namespace squeal
                         "pad's own deformation slips. A slip much larger than "
                         "the elastic one makes every node in contact slip and "
                         "reproduces steady sliding.");
+      prm.declare_entry("Segmentation refresh", str(segmentation_refresh),
+                        Patterns::Double(0.),
+                        "Large sliding: after a load step, the mortar "
+                        "segmentation is rebuilt on the deformed surfaces "
+                        "when the pad's largest relative tangential "
+                        "displacement against the disc since the last one "
+                        "exceeds this fraction of the shortest pad face "
+                        "edge (0: never). The preload's elastic slips are "
+                        "far below it, so it builds the segmentation once.");
       prm.leave_subsection();
     }
 
@@ -126,6 +135,7 @@ namespace squeal
       search_distance = prm.get_double("Search distance");
       load_steps      = prm.get_integer("Load steps");
       disc_slip       = prm.get_double("Disc slip per step");
+      segmentation_refresh = prm.get_double("Segmentation refresh");
       prm.leave_subsection();
       check(disc_slip == 0. || friction == "coulomb",
             "Preload/Disc slip per step = " + str(disc_slip) +

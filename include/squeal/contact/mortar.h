@@ -65,6 +65,11 @@ namespace squeal
       /// n_s x n_s: the standard mass matrix int phi_j phi_k of the slave
       /// surface [m^2], for the nodal pressure
       Eigen::SparseMatrix<double> slave_mass;
+      double slave_face_size = 0.; ///< shortest slave face edge [m]
+      /// what the operators were built from, for a rebuild
+      dealii::types::boundary_id slave_id = 0, master_id = 0;
+      double       search_distance = 0.; ///< m
+      unsigned int n_points        = 4;
       double covered_area = 0.;    ///< slave area over the master [m^2]
       double slave_area   = 0.;    ///< m^2
 
@@ -114,6 +119,50 @@ namespace squeal
                            dealii::types::boundary_id   master_id,
                            double                       search_distance,
                            unsigned int                 n_points = 4);
+
+    /**
+     * The largest relative tangential displacement of a slave node against
+     * the master between @p u_reference and @p u (n_dofs each) [m]:
+     * max_j |(t1_j, t2_j) . (D_jj du_j - sum_l M_jl du_l)| / D_jj over the
+     * nodes in reach, du = u - u_reference.
+     */
+    double
+    largest_tangential_slip(const MortarOperators        &op,
+                            const dealii::Vector<double> &u,
+                            const dealii::Vector<double> &u_reference);
+
+    /**
+     * build_mortar_operators() on the configuration displaced by @p u
+     * (n_dofs, m; MappingQEulerian of the FE's degree): the segmentation,
+     * D, M, normals and nodes of the deformed surfaces, with gap0 shifted
+     * so that weighted_gaps(v) = g0(deformed) + B (v - u) for the total
+     * displacement v. The slave nodes keep their order.
+     * @throws std::runtime_error as build_mortar_operators().
+     */
+    MortarOperators
+    build_mortar_operators_deformed(const dealii::DoFHandler<3>  &dof_handler,
+                                    const dealii::Vector<double> &u,
+                                    dealii::types::boundary_id    slave_id,
+                                    dealii::types::boundary_id    master_id,
+                                    double                        search_distance,
+                                    unsigned int                  n_points = 4);
+
+    /**
+     * Large sliding: rebuilds @p op on the configuration @p u
+     * (build_mortar_operators_deformed) when the largest relative tangential
+     * displacement since the last segmentation, @p u_segmented (zero-sized:
+     * the reference configuration), exceeds @p fraction times the shortest
+     * slave face edge; then sets @p u_segmented = @p u. Small-sliding
+     * problems thus build the segmentation once.
+     * @param fraction > 0; 0 never rebuilds
+     * @return whether the operators were rebuilt
+     */
+    bool
+    refresh_segmentation(MortarOperators              &op,
+                         const dealii::DoFHandler<3>  &dof_handler,
+                         const dealii::Vector<double> &u,
+                         dealii::Vector<double>       &u_segmented,
+                         double                        fraction);
   } // namespace contact
 } // namespace squeal
 

@@ -287,6 +287,10 @@ namespace squeal
       /// m: `coulomb` only, how far the disc turns under the pad (along
       /// Interface/Sliding direction) during each load step; 0: at rest
       double       disc_slip = 0.;
+      /// rebuild the mortar segmentation on the deformed surfaces after a
+      /// load step once the relative tangential displacement since the
+      /// last one exceeds this fraction of the shortest pad face edge
+      double       segmentation_refresh = 0.1;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };
