@@ -98,18 +98,11 @@ namespace squeal
       const auto [points, component] = physics::dof_support_points(model);
       constraints.clear();
       DoFTools::make_hanging_node_constraints(model.dof_handler, constraints);
-      std::vector<types::global_dof_index> face_dofs(
-        model.fe.n_dofs_per_face());
-      for (const auto &cell : model.dof_handler.active_cell_iterators())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              cell->face(f)->boundary_id() == geometry::boundary::clamped)
-            {
-              cell->face(f)->get_dof_indices(face_dofs);
-              for (const auto i : face_dofs)
-                if (!constraints.is_constrained(i))
-                  constraints.add_line(i);
-            }
+      const std::vector<bool> clamped =
+        physics::dofs_on_boundary(model, geometry::boundary::clamped);
+      for (types::global_dof_index i = 0; i < n; ++i)
+        if (clamped[i] && !constraints.is_constrained(i))
+          constraints.add_line(i);
       const auto    &g = prm.geometry;
       const Point<3> centre(g.pad_radius, 0., g.pad_size + g.support_length);
       types::global_dof_index held = 0;

@@ -95,6 +95,23 @@ namespace squeal
           target.set(i, e->column(), e->value());
     }
 
+    std::vector<bool>
+    dofs_on_boundary(const StructuralModel &model, const types::boundary_id id)
+    {
+      std::vector<bool>                    on(model.n_dofs(), false);
+      std::vector<types::global_dof_index> face_dofs(model.fe.n_dofs_per_face());
+      for (const auto &cell : model.dof_handler.active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == id)
+            {
+              cell->face(f)->get_dof_indices(face_dofs);
+              for (const auto i : face_dofs)
+                on[i] = true;
+            }
+      return on;
+    }
+
     void
     StructuralModel::setup_and_assemble(ConditionalOStream &pcout)
     {

@@ -150,19 +150,7 @@ namespace squeal
       // the lumped mass and the mortar operators are built over all cells,
       // the same on every rank and independent of the DoF numbering.
       std::tie(points, component) = physics::dof_support_points(model);
-      fixed.assign(n, false);
-      {
-        std::vector<types::global_dof_index> face_dofs(model.fe.n_dofs_per_face());
-        for (const auto &cell : model.dof_handler.active_cell_iterators())
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() == geometry::boundary::clamped)
-              {
-                cell->face(f)->get_dof_indices(face_dofs);
-                for (const auto i : face_dofs)
-                  fixed[i] = true;
-              }
-      }
+      fixed = physics::dofs_on_boundary(model, geometry::boundary::clamped);
       const auto &g = prm.geometry;
       const Point<3> centre(g.pad_radius, 0., g.pad_size + g.support_length);
       types::global_dof_index held = 0;

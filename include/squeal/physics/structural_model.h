@@ -265,6 +265,14 @@ namespace squeal
     dof_support_points(const StructuralModel &model);
 
     /**
+     * n_dofs flags: whether a DoF lies on a boundary face with id @p id, from
+     * all cells of the mesh (the same on every rank of a parallel::shared
+     * mesh).
+     */
+    std::vector<bool>
+    dofs_on_boundary(const StructuralModel &model, dealii::types::boundary_id id);
+
+    /**
      * A complex displacement field of @p from (one value per DoF of
      * @p from, constraints already distributed, m) evaluated at the support
      * points of every DoF of @p to (the component of that DoF): the field
