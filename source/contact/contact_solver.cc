@@ -292,7 +292,8 @@ namespace squeal
                      (!warm || settings.initial_status[j] == 1);
           // a node slipping at the previous load step keeps its traction's
           // direction for the first iteration
-          if (warm && settings.initial_traction.size() == n_s)
+          if (model == FrictionModel::coulomb && warm &&
+              settings.initial_traction.size() == n_s)
             {
               const auto  &t0   = settings.initial_traction[j];
               const double norm = std::hypot(t0[0], t0[1]);
