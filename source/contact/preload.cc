@@ -246,6 +246,9 @@ namespace squeal
       // step's contact state is written.
       const unsigned int n_steps = prm.preload.load_steps;
       Vector<double>     segmented; // where the segmentation was built
+      const ContactStiffness K = Utilities::MPI::n_mpi_processes(comm) == 1 ?
+                                   ContactStiffness(stiffness) :
+                                   ContactStiffness(stiffness_mpi, comm);
       Vector<double>     previous(load.size());
       state = ContactSolution();
       for (unsigned int k = 1; k <= n_steps; ++k)
@@ -256,10 +259,6 @@ namespace squeal
             *log << "Load step " << k << " of " << n_steps << ": "
                  << prm.preload.normal_force * k / n_steps << " N"
                  << std::endl;
-          const ContactStiffness K =
-            Utilities::MPI::n_mpi_processes(comm) == 1 ?
-              ContactStiffness(stiffness) :
-              ContactStiffness(stiffness_mpi, comm);
           const ContactSolution start = state;
           state = solve_contact_load_steps(K, previous, f, start, constraints,
                                            mortar, s, 1, 6, log);
