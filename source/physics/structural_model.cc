@@ -3,6 +3,7 @@
 // the support's springs and the friction interface. All matrices share one
 // sparsity pattern so that combining them is a cheap MatAXPY.
 
+#include <deal.II/base/qprojector.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/grid/grid_refinement.h>
@@ -403,11 +404,16 @@ namespace squeal
                                          g.support_length / 2 :
                                          g.support_length * k / (s.n_per_row - 1)));
 
-      // Each spring spread over the support-face nodes within the
-      // attachment radius of its station: cosine-bell weight times the
-      // node's share of the face area (Gauss-Lobatto face quadrature on the
-      // FE_Q support points, so the spring matrix stays diagonal on
-      // conforming meshes), normalised to the spring's stiffness.
+      // Each spring spread over the disc of the support face within the
+      // attachment radius of its station, with cosine-bell weights
+      // normalised to the spring's stiffness: a Winkler layer of stiffness
+      // density k bell(x) / int(bell) [N/m^3] in the sliding direction.
+      // Consistent (default): integrated exactly enough by composite Gauss
+      // rules of sub-intervals a / 6 on every face the bell touches, so the
+      // model is the same on every mesh and degree and a finer space can
+      // only lower its frequencies. Lumped (explicit dynamics): the
+      // Gauss-Lobatto rule on the face's FE_Q support points, a diagonal
+      // that changes with the node spacing.
       const double a = s.attachment_radius;
       const auto   bell = [&](const Point<3> &x, const Point<3> &station) {
         if (std::abs(x[1] - station[1]) > 1e-6 * g.pad_size)
@@ -415,17 +421,11 @@ namespace squeal
         const double r = std::hypot(x[0] - station[0], x[2] - station[2]);
         return r < a ? 0.5 * (1. + std::cos(numbers::PI * r / a)) : 0.;
       };
-      const QGaussLobatto<2> face_quadrature(fe.degree + 1);
-      FEFaceValues<3>        fe_face(mapping, fe, face_quadrature,
-                              update_values | update_quadrature_points |
-                                update_JxW_values);
-      const unsigned int     n = fe.n_dofs_per_cell();
-      FullMatrix<double>     cell_k(n, n);
+      const unsigned int n = fe.n_dofs_per_cell();
+      FullMatrix<double> cell_k(n, n);
       std::vector<types::global_dof_index> dofs(n);
-      std::vector<double>    total(stations.size(), 0.);
-      // the face nodes each spring acts on (for the report)
-      std::vector<std::set<std::pair<long long, long long>>> nodes(
-        stations.size());
+      std::vector<double>       total(stations.size(), 0.);
+      std::vector<unsigned int> faces_per_spring(stations.size(), 0);
       const auto on_side_face = [&](const auto &cell, const unsigned int f) {
         return cell->is_locally_owned() &&
                cell->material_id() == geometry::material::support &&
@@ -433,50 +433,113 @@ namespace squeal
                std::abs(std::abs(cell->face(f)->center()[1]) -
                         g.pad_size / 2) < 1e-6 * g.pad_size;
       };
-      for (const unsigned int pass : {0u, 1u})
+      // One record per support side face the bells touch: its quadrature
+      // points in the cell's unit coordinates, real points, weights [m^2]
+      // and the y-component shape functions nonzero on it.
+      struct FaceRule
+      {
+        DoFHandler<3>::active_cell_iterator cell;
+        std::vector<Point<3>>               unit, real;
+        std::vector<double>                 jxw;
+        std::vector<unsigned int>           shapes;
+      };
+      std::vector<FaceRule> rules;
+      const QGauss<1>       gauss(fe.degree + 1);
+      if (a > 0)
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          for (const auto f : cell->face_indices())
+            if (on_side_face(cell, f))
+              {
+                const auto   face = cell->face(f);
+                const double h    = face->diameter();
+                bool         near = false;
+                for (const auto &station : stations)
+                  near = near || (std::abs(face->center()[1] - station[1]) <
+                                    1e-6 * g.pad_size &&
+                                  face->center().distance(station) < a + h / 2);
+                if (!near)
+                  continue;
+                // the face must be a parallelogram (weights = unit weights
+                // times its area)
+                const Tensor<1, 3> d = face->vertex(0) + face->vertex(3) -
+                                   face->vertex(1) - face->vertex(2);
+                AssertThrow(d.norm() < 1e-9 * h,
+                            ExcMessage("a support side face is not a "
+                                       "parallelogram"));
+                const unsigned int copies =
+                  lumped_springs ?
+                    1 :
+                    std::min(200u, static_cast<unsigned int>(
+                                     std::ceil(6. * h / a)));
+                const Quadrature<2> q2 =
+                  lumped_springs ?
+                    Quadrature<2>(QGaussLobatto<2>(fe.degree + 1)) :
+                    Quadrature<2>(QIterated<2>(gauss, copies));
+                const Quadrature<3> q3 =
+                  QProjector<3>::project_to_face(ReferenceCells::Hexahedron,
+                                                 q2, f);
+                FaceRule rule;
+                rule.cell = cell;
+                for (unsigned int q = 0; q < q3.size(); ++q)
+                  {
+                    const Point<3> x =
+                      mapping.transform_unit_to_real_cell(cell, q3.point(q));
+                    rule.unit.push_back(q3.point(q));
+                    rule.real.push_back(x);
+                    rule.jxw.push_back(q3.weight(q) * face->measure());
+                  }
+                for (unsigned int k = 0; k < n; ++k)
+                  if (fe.system_to_component_index(k).first == 1 &&
+                      fe.has_support_on_face(k, f))
+                    rule.shapes.push_back(k);
+                rules.push_back(std::move(rule));
+              }
+      for (const auto &rule : rules)
         {
-          for (const auto &cell : dof_handler.active_cell_iterators())
-            for (const auto f : cell->face_indices())
-              if (a > 0 && on_side_face(cell, f))
-                {
-                  fe_face.reinit(cell, f);
-                  cell_k = 0;
-                  bool any = false;
-                  for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                    for (unsigned int i = 0; i < stations.size(); ++i)
-                      {
-                        const double w =
-                          bell(fe_face.quadrature_point(q), stations[i]) *
-                          fe_face.JxW(q);
-                        if (w == 0.)
-                          continue;
-                        if (pass == 0)
-                          {
-                            total[i] += w;
-                            const auto &x = fe_face.quadrature_point(q);
-                            nodes[i].insert({std::llround(x[0] * 1e9),
-                                             std::llround(x[2] * 1e9)});
-                            continue;
-                          }
-                        any = true;
-                        const double c = reference.spring_stiffness * w / total[i];
-                        for (unsigned int k = 0; k < n; ++k)
-                          for (unsigned int l = 0; l < n; ++l)
-                            cell_k(k, l) +=
-                              c * fe_face.shape_value_component(k, q, 1) *
-                              fe_face.shape_value_component(l, q, 1);
-                      }
-                  if (any)
-                    {
-                      cell->get_dof_indices(dofs);
-                      constraints.distribute_local_to_global(cell_k, dofs,
-                                                             stiffness_springs);
-                    }
-                }
-          if (pass == 0)
+          std::vector<bool> touched(stations.size(), false);
+          for (unsigned int q = 0; q < rule.real.size(); ++q)
+            for (unsigned int i = 0; i < stations.size(); ++i)
+              {
+                const double w = bell(rule.real[q], stations[i]) * rule.jxw[q];
+                total[i] += w;
+                touched[i] = touched[i] || w > 0.;
+              }
+          for (unsigned int i = 0; i < stations.size(); ++i)
+            faces_per_spring[i] += touched[i];
+        }
+      {
+        const std::vector<double> local = total;
+        Utilities::MPI::sum(local, comm, total);
+      }
+      std::vector<double> phi;
+      for (const auto &rule : rules)
+        {
+          cell_k = 0;
+          bool any = false;
+          phi.resize(rule.shapes.size());
+          for (unsigned int q = 0; q < rule.real.size(); ++q)
             {
-              const std::vector<double> local = total;
-              Utilities::MPI::sum(local, comm, total);
+              double c = 0.;
+              for (unsigned int i = 0; i < stations.size(); ++i)
+                if (total[i] > 0.)
+                  c += reference.spring_stiffness *
+                       bell(rule.real[q], stations[i]) * rule.jxw[q] /
+                       total[i];
+              if (c == 0.)
+                continue;
+              any = true;
+              for (unsigned int k = 0; k < phi.size(); ++k)
+                phi[k] = fe.shape_value_component(rule.shapes[k],
+                                                  rule.unit[q], 1);
+              for (unsigned int k = 0; k < phi.size(); ++k)
+                for (unsigned int l = 0; l < phi.size(); ++l)
+                  cell_k(rule.shapes[k], rule.shapes[l]) += c * phi[k] * phi[l];
+            }
+          if (any)
+            {
+              rule.cell->get_dof_indices(dofs);
+              constraints.distribute_local_to_global(cell_k, dofs,
+                                                     stiffness_springs);
             }
         }
 
@@ -529,12 +592,9 @@ namespace squeal
               stiffness_springs.add(dof, dof, reference.spring_stiffness);
           }
       stiffness_springs.compress(VectorOperation::add);
-      // nodes per spread spring (a node on a rank boundary counts once per
-      // rank: a report, not an input)
-      std::vector<unsigned int> local_counts, counts(stations.size());
-      for (const auto &set : nodes)
-        local_counts.push_back(set.size());
-      Utilities::MPI::sum(local_counts, comm, counts);
+      // faces per spread spring (a report, not an input)
+      std::vector<unsigned int> counts(stations.size());
+      Utilities::MPI::sum(faces_per_spring, comm, counts);
       unsigned int n_min = std::numeric_limits<unsigned int>::max(), n_max = 0;
       for (unsigned int i = 0; i < stations.size(); ++i)
         if (total[i] > 0.)
@@ -548,8 +608,10 @@ namespace squeal
         pcout << "each at the nearest node";
       else
         pcout << stations.size() - n_point << " spread over radius "
-              << 1e3 * a << " mm (" << n_min << "-" << n_max
-              << " face nodes each)"
+              << 1e3 * a << " mm ("
+              << (lumped_springs ? "lumped on the face nodes" :
+                                   "consistent Winkler layer")
+              << ", " << n_min << "-" << n_max << " faces each)"
               << (n_point > 0 ? ", " + std::to_string(n_point) +
                                   " at the nearest node (none inside)" :
                                 "");

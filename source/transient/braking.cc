@@ -135,6 +135,7 @@ namespace squeal
             }
           MPI_Barrier(comm);
         }
+      model.lumped_springs = true; // the matrix-free product grounds each DoF
       model.setup_and_assemble(pcout);
       for (const auto &line : model.constraints.get_lines())
         if (!line.entries.empty())

@@ -107,13 +107,13 @@ namespace squeal
     /** The 4 x 11 tangential springs holding the support (thesis § 3.2.1).
      *
      * Each spring acts on a small disc of the support face around its
-     * station (radius attachment_radius, cosine-bell weights on the face
-     * nodes inside it, normalised so that the spring keeps its stiffness):
-     * a force at one node of a 3D body is singular (its local compliance
-     * grows without bound under refinement), so the thesis' point springs
-     * have no converged answer. At 1.25 mm, the node spacing across the
-     * support of the default mesh, the default mesh sees the single node
-     * at each station, as the thesis' model did.
+     * station (radius attachment_radius): a Winkler layer of stiffness
+     * density k w(x) / int(w) [N/m^3] in the sliding direction, w the cosine
+     * bell, so that the spring keeps its stiffness k. A force at one node of
+     * a 3D body is singular (its local compliance grows without bound under
+     * refinement), so the thesis' point springs have no converged answer;
+     * the layer, integrated consistently (StructuralModel::lumped_springs),
+     * is the same model on every mesh and degree.
      */
     struct Springs
     {

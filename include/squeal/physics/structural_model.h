@@ -244,6 +244,20 @@ namespace squeal
       PETScMatrix interface_normal;   ///< K_n [N/m]
       PETScMatrix interface_friction; ///< K_t per unit mu [N/m]
 
+      /**
+       * How the springs spread over their attachment discs are integrated
+       * (set before setup_and_assemble()). false (default): consistently,
+       * a Winkler layer of stiffness density k w(x) / int(w) [N/m^3]
+       * (w the cosine bell of Springs/Attachment radius) by composite Gauss
+       * rules fine enough for the bell, so the spring model is the same on
+       * every mesh and degree (what the tolerance-driven mesh needs). true:
+       * lumped on the face's FE_Q support points (Gauss-Lobatto rule), which
+       * keeps stiffness_springs diagonal, as the explicit dynamics' grounded
+       * springs need, at the price of a model that moves with the node
+       * spacing.
+       */
+      bool lumped_springs = false;
+
       /// Parameter values of the assembled parts (see MatrixParts).
       parameters::ScalarPoint reference;
       double constrained_diagonal = 1.; ///< d above [N/m]
