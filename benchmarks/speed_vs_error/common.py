@@ -13,10 +13,11 @@ def save_png(fig, path):
     print("wrote", path)
 
 
-def run_squeal(squeal, body, out):
+def run_squeal(squeal, body, out, ranks=1):
     """Writes BODY plus an Output subsection (directory OUT, overwrite, no
-    mode shapes) to OUT.prm, runs SQUEAL on it and returns (stdout, wall
-    seconds); exits with squeal's output if it fails."""
+    mode shapes) to OUT.prm, runs SQUEAL on it (under mpirun -np RANKS when
+    RANKS > 1) and returns (stdout, wall seconds); exits with squeal's
+    output if it fails."""
     prm = out + ".prm"
     with open(prm, "w") as f:
         f.write(body + f"""subsection Output
@@ -26,7 +27,10 @@ def run_squeal(squeal, body, out):
 end
 """)
     start = time.monotonic()
-    r = subprocess.run([squeal, prm], capture_output=True, text=True)
+    command = [squeal, prm]
+    if ranks > 1:
+        command = ["mpirun", "-np", str(ranks)] + command
+    r = subprocess.run(command, capture_output=True, text=True)
     seconds = time.monotonic() - start
     if r.returncode != 0:
         sys.exit(f"{out}: squeal failed\n{r.stdout}\n{r.stderr}")

@@ -17,6 +17,9 @@ tolerance-driven mesh is chosen), full solver, band 900-20 000 Hz:
                   degree-4 partners on the refined mesh are the reference of
                   the pad and support modes, which reference_d4 leaves on the
                   default pad and support cells
+uniform_d2_ps and tolerance_d3 run a second time under mpirun -np 2
+(NAME_np2): their wall times in the table's last column, their largest
+error beside it.
 Each run's k-th mode is compared with the reference's k-th (both sorted by
 frequency; the runs find the same number of modes in the band), error
 |lambda - lambda_ref| / |lambda_ref| on the complex eigenvalue. For the
@@ -82,10 +85,10 @@ def lam(freq, re):
     return complex(float(re), 2 * math.pi * float(freq))
 
 
-def run(name):
+def run(name, ranks=1):
     """(DoFs of the final mesh, wall seconds, sorted eigenvalues, output
     dir, the adaptive cycles' full-solve seconds)."""
-    out = os.path.join(work, name)
+    out = os.path.join(work, name + ("_np2" if ranks == 2 else ""))
     if not all(os.path.exists(p) for p in (os.path.join(out, "eigenvalues.csv"),
                                            out + ".stdout", out + ".seconds")):
         print(f"running {name} ...", flush=True)
@@ -93,7 +96,7 @@ def run(name):
             squeal, "subsection Scene\n  set Bodies = tribobrake\nend\n"
             + RUNS[name] + single_point_sweep("pad modulus", 1e9,
                                               "friction coefficient", 0.01),
-            out)
+            out, ranks)
         with open(out + ".stdout", "w") as f:
             f.write(stdout)
         with open(out + ".seconds", "w") as f:
@@ -135,25 +138,33 @@ def errors_by_rank(modes, ref):
 def main():
     os.makedirs(work, exist_ok=True)
     runs = {name: run(name) for name in RUNS}
+    np2 = {name: run(name, 2) for name in ("uniform_d2_ps", "tolerance_d3")}
     ref = runs["reference_d4"][2]
-    print("| mesh | DoFs | wall time [s] | modes | largest error | median error | at |")
-    print("|---|---|---|---|---|---|---|")
+    print("| mesh | DoFs | wall time [s] | modes | largest error | median error "
+          "| at | np = 2: wall time [s], largest error |")
+    print("|---|---|---|---|---|---|---|---|")
     points = []
     solve_point = None
     for name in ("uniform_d2", "uniform_d2_ps", "tolerance_d3", "reference_d4"):
         dofs, seconds, modes, _, solves = runs[name]
         if name == "reference_d4":
-            print(f"| {name} | {dofs} | {seconds:.0f} | {len(modes)} | reference | | |")
+            print(f"| {name} | {dofs} | {seconds:.0f} | {len(modes)} | reference "
+                  "| | | |")
             continue
         e = errors_by_rank(modes, ref)
         k = max(range(len(e)), key=e.__getitem__)
+        parallel = ""
+        if name in np2:
+            _, seconds2, modes2, _, _ = np2[name]
+            parallel = (f"{seconds2:.0f}, "
+                        f"{100 * max(errors_by_rank(modes2, ref)):.3f} %")
         print(f"| {name} | {dofs} | {seconds:.0f} | {len(modes)} | "
               f"{100 * max(e):.3f} % | {100 * statistics.median(e):.3f} % | "
-              f"{modes[k].imag / 2 / math.pi:.0f} Hz |")
+              f"{modes[k].imag / 2 / math.pi:.0f} Hz | {parallel} |")
         points.append((name, dofs, seconds, max(e), statistics.median(e)))
         if solves:
             print(f"| {name}: its final solve alone, without the estimate | {dofs} | "
-                  f"{solves[-1]:.0f} | | | | |")
+                  f"{solves[-1]:.0f} | | | | | |")
             solve_point = (solves[-1], max(e))
 
     # the tolerance run's estimates against its true errors
