@@ -433,15 +433,16 @@ namespace squeal
                std::abs(std::abs(cell->face(f)->center()[1]) -
                         g.pad_size / 2) < 1e-6 * g.pad_size;
       };
-      // One record per support side face the bells touch: its quadrature
-      // points in the cell's unit coordinates, real points, weights [m^2]
-      // and the y-component shape functions nonzero on it.
+      // One record per support side face the bells touch: the quadrature
+      // points some bell covers, in the cell's unit coordinates, each with
+      // its (spring, bell x JxW [m^2]) pairs, and the y-component shape
+      // functions nonzero on the face.
       struct FaceRule
       {
-        DoFHandler<3>::active_cell_iterator cell;
-        std::vector<Point<3>>               unit, real;
-        std::vector<double>                 jxw;
-        std::vector<unsigned int>           shapes;
+        DoFHandler<3>::active_cell_iterator                           cell;
+        std::vector<Point<3>>                                         unit;
+        std::vector<std::vector<std::pair<unsigned int, double>>> weights;
+        std::vector<unsigned int>                                     shapes;
       };
       std::vector<FaceRule> rules;
       const QGauss<1>       gauss(fe.degree + 1);
@@ -466,47 +467,43 @@ namespace squeal
                 AssertThrow(d.norm() < 1e-9 * h,
                             ExcMessage("a support side face is not a "
                                        "parallelogram"));
-                const unsigned int copies =
-                  lumped_springs ?
-                    1 :
-                    std::min(200u, static_cast<unsigned int>(
-                                     std::ceil(6. * h / a)));
                 const Quadrature<2> q2 =
                   lumped_springs ?
                     Quadrature<2>(QGaussLobatto<2>(fe.degree + 1)) :
-                    Quadrature<2>(QIterated<2>(gauss, copies));
+                    Quadrature<2>(QIterated<2>(
+                      gauss, std::min(200u, static_cast<unsigned int>(
+                                              std::ceil(6. * h / a)))));
                 const Quadrature<3> q3 =
                   QProjector<3>::project_to_face(ReferenceCells::Hexahedron,
                                                  q2, f);
-                FaceRule rule;
+                FaceRule          rule;
+                std::vector<bool> touched(stations.size(), false);
                 rule.cell = cell;
                 for (unsigned int q = 0; q < q3.size(); ++q)
                   {
                     const Point<3> x =
                       mapping.transform_unit_to_real_cell(cell, q3.point(q));
+                    std::vector<std::pair<unsigned int, double>> w;
+                    for (unsigned int i = 0; i < stations.size(); ++i)
+                      if (const double b = bell(x, stations[i]); b > 0.)
+                        {
+                          w.emplace_back(i, b * q3.weight(q) * face->measure());
+                          total[i] += w.back().second;
+                          touched[i] = true;
+                        }
+                    if (w.empty())
+                      continue;
                     rule.unit.push_back(q3.point(q));
-                    rule.real.push_back(x);
-                    rule.jxw.push_back(q3.weight(q) * face->measure());
+                    rule.weights.push_back(std::move(w));
                   }
+                for (unsigned int i = 0; i < stations.size(); ++i)
+                  faces_per_spring[i] += touched[i];
                 for (unsigned int k = 0; k < n; ++k)
                   if (fe.system_to_component_index(k).first == 1 &&
                       fe.has_support_on_face(k, f))
                     rule.shapes.push_back(k);
                 rules.push_back(std::move(rule));
               }
-      for (const auto &rule : rules)
-        {
-          std::vector<bool> touched(stations.size(), false);
-          for (unsigned int q = 0; q < rule.real.size(); ++q)
-            for (unsigned int i = 0; i < stations.size(); ++i)
-              {
-                const double w = bell(rule.real[q], stations[i]) * rule.jxw[q];
-                total[i] += w;
-                touched[i] = touched[i] || w > 0.;
-              }
-          for (unsigned int i = 0; i < stations.size(); ++i)
-            faces_per_spring[i] += touched[i];
-        }
       {
         const std::vector<double> local = total;
         Utilities::MPI::sum(local, comm, total);
@@ -515,19 +512,12 @@ namespace squeal
       for (const auto &rule : rules)
         {
           cell_k = 0;
-          bool any = false;
           phi.resize(rule.shapes.size());
-          for (unsigned int q = 0; q < rule.real.size(); ++q)
+          for (unsigned int q = 0; q < rule.unit.size(); ++q)
             {
               double c = 0.;
-              for (unsigned int i = 0; i < stations.size(); ++i)
-                if (total[i] > 0.)
-                  c += reference.spring_stiffness *
-                       bell(rule.real[q], stations[i]) * rule.jxw[q] /
-                       total[i];
-              if (c == 0.)
-                continue;
-              any = true;
+              for (const auto &[i, w] : rule.weights[q])
+                c += reference.spring_stiffness * w / total[i];
               for (unsigned int k = 0; k < phi.size(); ++k)
                 phi[k] = fe.shape_value_component(rule.shapes[k],
                                                   rule.unit[q], 1);
@@ -535,7 +525,7 @@ namespace squeal
                 for (unsigned int l = 0; l < phi.size(); ++l)
                   cell_k(rule.shapes[k], rule.shapes[l]) += c * phi[k] * phi[l];
             }
-          if (any)
+          if (!rule.unit.empty())
             {
               rule.cell->get_dof_indices(dofs);
               constraints.distribute_local_to_global(cell_k, dofs,
