@@ -43,8 +43,184 @@ namespace squeal
       , comm(comm)
       , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
       , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
-      , model(prm, comm)
+      , model(std::make_unique<physics::StructuralModel>(prm, comm))
     {}
+
+    namespace
+    {
+      // One contact refinement cycle (Mesh/Contact refinements): per active
+      // cell the largest variation (max - min) of the preload's contact
+      // pressure over its faces on the pad face or the disc's contact face
+      // that overlap the pad's footprint, taken at the pad nodes NODES in
+      // the face's (x, y) bounding box and at the face's vertices (the
+      // nodal pressure interpolated bilinearly between the nodes): the
+      // pressure gradient times the cell size. Refinement halves it, so the
+      // cells go where the gradient is steepest (the pad's leading edge, its
+      // separation front), not over the whole disc. The FRACTION of the
+      // cells with such a face with the largest variation are refined (ties
+      // together); the table (cycle, body, cell centre, variation, refined)
+      // goes to CSV. Returns the number of refined cells.
+      unsigned int
+      refine_by_contact_pressure(
+        physics::StructuralModel                                   &model,
+        const std::vector<std::pair<dealii::Point<3>, double>>     &nodes,
+        const double                                                fraction,
+        const unsigned int                                          cycle,
+        std::ostream                                               &csv,
+        ConditionalOStream                                         &pcout)
+      {
+        double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
+        for (const auto &[x, p] : nodes)
+          {
+            x_lo = std::min(x_lo, x[0]);
+            x_hi = std::max(x_hi, x[0]);
+            y_lo = std::min(y_lo, x[1]);
+            y_hi = std::max(y_hi, x[1]);
+          }
+        const double eps = 1e-9;
+        // the pad nodes form a tensor grid over the pad face (the preload
+        // runs on the unrefined mesh): the pressure between them bilinear
+        const auto unique_sorted = [&](const unsigned int d) {
+          std::vector<double> v;
+          for (const auto &[x, p] : nodes)
+            v.push_back(x[d]);
+          std::sort(v.begin(), v.end());
+          v.erase(std::unique(v.begin(), v.end(),
+                              [&](double a, double b) { return b - a < eps; }),
+                  v.end());
+          return v;
+        };
+        const std::vector<double> xs = unique_sorted(0), ys = unique_sorted(1);
+        const auto locate = [&](const std::vector<double> &g, const double x) {
+          unsigned int i =
+            std::upper_bound(g.begin(), g.end(), x) - g.begin();
+          i = std::min<unsigned int>(std::max(i, 1u), g.size() - 1) - 1;
+          return std::pair<unsigned int, double>(
+            i, std::clamp((x - g[i]) / (g[i + 1] - g[i]), 0., 1.));
+        };
+        std::vector<double> grid(xs.size() * ys.size(), 0.);
+        std::vector<bool>   seen(grid.size(), false);
+        for (const auto &[x, p] : nodes)
+          {
+            const unsigned int i = locate(xs, x[0] + eps).first +
+                                   (x[0] > xs.back() - eps ? 1 : 0),
+                               j = locate(ys, x[1] + eps).first +
+                                   (x[1] > ys.back() - eps ? 1 : 0);
+            grid[i * ys.size() + j] = p;
+            seen[i * ys.size() + j] = true;
+          }
+        if (xs.size() < 2 || ys.size() < 2 ||
+            std::count(seen.begin(), seen.end(), false) > 0)
+          throw std::runtime_error(
+            "Mesh/Contact refinements: the preload's pad nodes do not form a "
+            "tensor grid over the pad face (" + std::to_string(nodes.size()) +
+            " nodes, " + std::to_string(xs.size()) + " x " +
+            std::to_string(ys.size()) + " coordinates)");
+        const auto pressure_at = [&](const dealii::Point<3> &x) {
+          const auto [i, t] = locate(xs, x[0]);
+          const auto [j, u] = locate(ys, x[1]);
+          const auto g      = [&](unsigned int a, unsigned int b) {
+            return grid[a * ys.size() + b];
+          };
+          return (1 - t) * (1 - u) * g(i, j) + t * (1 - u) * g(i + 1, j) +
+                 (1 - t) * u * g(i, j + 1) + t * u * g(i + 1, j + 1);
+        };
+        const unsigned int n_cells = model.triangulation.n_active_cells();
+        Vector<float>      indicator(n_cells);
+        std::vector<bool>  on_contact(n_cells, false);
+        unsigned int       n_contact = 0;
+        for (const auto &cell : model.triangulation.active_cell_iterators())
+          {
+            double variation = -1.;
+            for (const auto f : cell->face_indices())
+              {
+                const auto face = cell->face(f);
+                if (!face->at_boundary() ||
+                    (face->boundary_id() != geometry::boundary::pad_contact &&
+                     face->boundary_id() != geometry::boundary::disc_contact))
+                  continue;
+                double fx_lo = 1e300, fx_hi = -1e300, fy_lo = 1e300,
+                       fy_hi = -1e300;
+                for (const auto v : face->vertex_indices())
+                  {
+                    const auto &x = face->vertex(v);
+                    fx_lo         = std::min(fx_lo, x[0]);
+                    fx_hi         = std::max(fx_hi, x[0]);
+                    fy_lo         = std::min(fy_lo, x[1]);
+                    fy_hi         = std::max(fy_hi, x[1]);
+                  }
+                // the face overlaps the pad's footprint (an area, not a line)
+                if (std::min(fx_hi, x_hi) - std::max(fx_lo, x_lo) < eps ||
+                    std::min(fy_hi, y_hi) - std::max(fy_lo, y_lo) < eps)
+                  continue;
+                double lo = 1e300, hi = -1e300;
+                for (const auto v : face->vertex_indices())
+                  {
+                    const double p = pressure_at(face->vertex(v));
+                    lo             = std::min(lo, p);
+                    hi             = std::max(hi, p);
+                  }
+                for (const auto &[q, p] : nodes)
+                  if (q[0] > fx_lo - eps && q[0] < fx_hi + eps &&
+                      q[1] > fy_lo - eps && q[1] < fy_hi + eps)
+                    {
+                      lo = std::min(lo, p);
+                      hi = std::max(hi, p);
+                    }
+                variation = std::max(variation, hi - lo);
+              }
+            if (variation >= 0.)
+              {
+                indicator[cell->active_cell_index()]  = variation;
+                on_contact[cell->active_cell_index()] = true;
+                ++n_contact;
+              }
+          }
+        const unsigned int n_refine =
+          std::min(n_contact, unsigned(std::ceil(fraction * n_contact)));
+        // the threshold the refined cells reach (ties refined together)
+        std::vector<float> sorted;
+        for (unsigned int c = 0; c < n_cells; ++c)
+          if (on_contact[c])
+            sorted.push_back(indicator[c]);
+        std::sort(sorted.begin(), sorted.end(), std::greater<float>());
+        const float threshold = n_refine > 0 ? sorted[n_refine - 1] : 1e30f;
+        std::array<unsigned int, 3> by_body{};
+        for (const auto &cell : model.triangulation.active_cell_iterators())
+          {
+            const unsigned int c = cell->active_cell_index();
+            if (!on_contact[c])
+              continue;
+            const bool refined = indicator[c] >= threshold && indicator[c] > 0.f;
+            if (refined)
+              ++by_body[std::min<unsigned int>(cell->material_id(), 2)];
+            csv << cycle << ','
+                << (cell->material_id() == geometry::material::pad ? "pad" :
+                                                                      "disc")
+                << ',' << cell->center()[0] << ',' << cell->center()[1] << ','
+                << cell->center()[2] << ',' << indicator[c] << ',' << refined
+                << '\n';
+          }
+        const unsigned int n_refined = by_body[0] + by_body[1] + by_body[2];
+        pcout << "Contact refinement cycle " << cycle << ": " << n_refined
+              << " of " << n_contact << " contact cells refined ("
+              << by_body[geometry::material::pad] << " pad, "
+              << by_body[geometry::material::disc]
+              << " disc), pressure variation across a face: largest "
+              << std::setprecision(3) << 1e-6 * sorted.front()
+              << " MPa, refined down to " << 1e-6 * threshold << " MPa"
+              << std::setprecision(6) << std::endl;
+        if (n_refined > 0)
+          {
+            // refine exactly the cells above the threshold: zero elsewhere
+            for (unsigned int c = 0; c < n_cells; ++c)
+              if (!on_contact[c] || indicator[c] < threshold)
+                indicator[c] = 0.f;
+            model.refine(indicator, (n_refined + 0.5) / n_cells, false, pcout);
+          }
+        return n_refined;
+      }
+    } // namespace
 
     void
     ComplexEigenvalueAnalysis::setup_system()
@@ -61,6 +237,8 @@ namespace squeal
           handler.print_parameters(out, ParameterHandler::PRM);
         }
       MPI_Barrier(comm);
+      // the preload's nodal contact pressure at the pad nodes [Pa]
+      std::vector<std::pair<dealii::Point<3>, double>> preload_pressure;
       if (prm.scene.analysis == "preloaded cea")
         {
           // The preload at the file's nominal parameters, written into
@@ -74,9 +252,13 @@ namespace squeal
           const contact::MortarOperators &op = preload.interface();
           std::vector<std::pair<dealii::Point<3>, double>> nodes;
           for (unsigned int j = 0; j < op.n_slave(); ++j)
-            nodes.emplace_back(op.slave_points[j],
-                               preload.solution().status[j] != 0 ? 1. : 0.);
-          model.interface_mask = [nodes](const dealii::Point<3> &x) {
+            {
+              nodes.emplace_back(op.slave_points[j],
+                                 preload.solution().status[j] != 0 ? 1. : 0.);
+              preload_pressure.emplace_back(
+                op.slave_points[j], preload.solution().nodal_pressure[j]);
+            }
+          model->interface_mask = [nodes](const dealii::Point<3> &x) {
             double best = 1e300, value = 0.;
             for (const auto &[p, v] : nodes)
               if (p.distance(x) < best)
@@ -87,7 +269,22 @@ namespace squeal
             return value;
           };
         }
-      model.setup_and_assemble(pcout);
+      model->setup_and_assemble(pcout);
+      if (prm.mesh.contact_refinements > 0)
+        {
+          std::ostringstream csv;
+          csv << "cycle,body,x,y,z,pressure_variation_Pa,refined\n";
+          for (unsigned int c = 0; c < prm.mesh.contact_refinements; ++c)
+            if (refine_by_contact_pressure(*model, preload_pressure,
+                                           prm.mesh.contact_refinement_fraction,
+                                           c, csv, pcout) == 0)
+              break;
+          if (Utilities::MPI::this_mpi_process(comm) == 0)
+            std::ofstream(work_dir + "/contact_refinement.csv") << csv.str();
+          pcout << "Mesh after the contact refinement: "
+                << model->triangulation.n_active_cells() << " cells, "
+                << model->n_dofs() << " DoFs" << std::endl;
+        }
       adapt_mesh();
     }
 
@@ -151,7 +348,7 @@ namespace squeal
         {
           TimerOutput::Scope t(timer, "reduced basis");
           pcout << "Building the reduced basis" << std::endl;
-          reduced.build(model.parts(), basis_samples(), band,
+          reduced.build(model->parts(), basis_samples(), band,
                         es.reduced_band_factor,
                         es.reduced_enrichment ? es.reduced_enrichment_depth : 0,
                         pcout);
@@ -231,7 +428,7 @@ namespace squeal
           TimerOutput::Scope t(timer, "full solve");
           Point p;
           p.values = values;
-          p.full   = eigen::solve_full(model.parts(), values, band, pcout);
+          p.full   = eigen::solve_full(model->parts(), values, band, pcout);
           // 1.5 f_max holds about 1.7 times the modes of the band
           band.initial_nev =
             std::max<unsigned int>(40, 1.9 * p.full.size() + 10);
@@ -284,7 +481,7 @@ namespace squeal
       for (const unsigned int p : chosen)
         {
           const auto full =
-            eigen::solve_full(model.parts(), points[p].values, band, pcout);
+            eigen::solve_full(model->parts(), points[p].values, band, pcout);
           // Every full eigenvalue must have a reduced counterpart.
           for (const auto &f : full)
             {
@@ -427,16 +624,16 @@ namespace squeal
       const std::vector<eigen::EigenPair> &pairs,
       const std::vector<double>           &weights) const
     {
-      const unsigned int n_cells = model.triangulation.n_active_cells();
+      const unsigned int n_cells = model->triangulation.n_active_cells();
       Vector<double>     sum(n_cells);
-      physics::PETScVector ghosted(model.locally_owned_dofs,
-                                   model.locally_relevant_dofs, comm);
+      physics::PETScVector ghosted(model->locally_owned_dofs,
+                                   model->locally_relevant_dofs, comm);
       for (const auto &pair : pairs)
         {
           physics::PETScVector re = pair.re, im = pair.im, Mx(pair.re);
-          model.mass.vmult(Mx, re);
+          model->mass.vmult(Mx, re);
           double norm2 = re * Mx;
-          model.mass.vmult(Mx, im);
+          model->mass.vmult(Mx, im);
           norm2 += im * Mx;
           if (!(norm2 > 0.))
             continue;
@@ -444,12 +641,12 @@ namespace squeal
           Vector<double> mode(n_cells);
           for (physics::PETScVector *x : {&re, &im})
             {
-              model.constraints.distribute(*x);
+              model->constraints.distribute(*x);
               ghosted = *x;
               Vector<float> eta(n_cells);
               KellyErrorEstimator<3>::estimate(
-                model.mapping, model.dof_handler,
-                QGauss<2>(model.fe.degree + 1), {}, ghosted, eta);
+                model->mapping, model->dof_handler,
+                QGauss<2>(model->fe.degree + 1), {}, ghosted, eta);
               for (unsigned int c = 0; c < n_cells; ++c)
                 mode[c] += weight * double(eta[c]) * double(eta[c]);
             }
@@ -495,10 +692,10 @@ namespace squeal
           }
       const Vector<double> sum =
         mode_indicator(pt->q.empty() ? pt->full : pairs);
-      const unsigned int n_cells = model.triangulation.n_active_cells();
+      const unsigned int n_cells = model->triangulation.n_active_cells();
       std::array<double, 3> share{};
       Vector<float> indicator(n_cells), body(n_cells);
-      for (const auto &cell : model.triangulation.active_cell_iterators())
+      for (const auto &cell : model->triangulation.active_cell_iterators())
         {
           const unsigned int c = cell->active_cell_index();
           indicator[c]         = std::sqrt(sum[c]);
@@ -517,7 +714,7 @@ namespace squeal
           std::ofstream csv(work_dir + "/mesh_error.csv");
           csv << "body,cells,share_of_squared_indicator\n";
           std::array<unsigned int, 3> cells{};
-          for (const auto &cell : model.triangulation.active_cell_iterators())
+          for (const auto &cell : model->triangulation.active_cell_iterators())
             ++cells[std::min<unsigned int>(cell->material_id(), 2)];
           const char *names[3] = {"disc", "pad", "support"};
           for (unsigned int b = 0; b < 3; ++b)
@@ -525,7 +722,7 @@ namespace squeal
                 << '\n';
         }
       DataOut<3> data_out;
-      data_out.attach_triangulation(model.triangulation);
+      data_out.attach_triangulation(model->triangulation);
       data_out.add_data_vector(indicator, "error_indicator");
       data_out.add_data_vector(body, "body");
       data_out.build_patches();
@@ -621,6 +818,48 @@ namespace squeal
                 }
           }
         return result;
+      }
+
+      // Modes closer to each other than their discretisation errors share
+      // their estimates: mode k takes the largest estimate of every
+      // partnered mode j with |lambda_k - lambda_j| / |lambda_k| below
+      // three times the larger of the two raw shifts |lambda - lambda_rich|
+      // / |lambda_rich| (the estimates / 1.5). Two modes coupled by the
+      // friction (or a doublet split by the pad) mix with weights set by
+      // their separation; where a correction of that size can move one of
+      // them, the richer space can change the mixing, and the error of the
+      // less resolved member passes to the other. Measured on the coarse
+      // TriboBrake with its springs (25 GPa, mu = 0.5,
+      // end_to_end/adaptive_tolerance_springs): a mode at 4234.9 Hz moved
+      // 0.5 Hz from degree 2 to 3 and 8.8 Hz at degree 4, while its
+      // neighbour 63.5 Hz above moved 38 Hz at degree 3 (separation 1.7 x
+      // its shift): its own estimate was 9.8 x under its true error. A
+      // shared estimate only raises estimates, so it cannot make a mesh
+      // pass that did not; modes without a partner (estimate 100 %) give
+      // nothing, their shift being unknown.
+      // Returns the number of estimates raised.
+      unsigned int
+      share_within_clusters(const std::vector<eigen::EigenPair> &pairs,
+                            std::vector<Partner>                &estimate)
+      {
+        std::vector<double> own(estimate.size());
+        for (unsigned int k = 0; k < estimate.size(); ++k)
+          own[k] = estimate[k].difference;
+        for (unsigned int k = 0; k < estimate.size(); ++k)
+          for (unsigned int j = 0; j < estimate.size(); ++j)
+            if (j != k && estimate[j].index >= 0 && estimate[k].index >= 0)
+              {
+                const double separation =
+                  std::abs(pairs[k].lambda - pairs[j].lambda) /
+                  std::abs(pairs[k].lambda);
+                if (separation < 3. * std::max(own[k], own[j]) / 1.5)
+                  estimate[k].difference =
+                    std::max(estimate[k].difference, own[j]);
+              }
+        unsigned int n_raised = 0;
+        for (unsigned int k = 0; k < estimate.size(); ++k)
+          n_raised += estimate[k].difference > own[k];
+        return n_raised;
       }
 
       // The partners of PAIRS (on MODEL's mesh) in the same mesh at the
@@ -778,11 +1017,19 @@ namespace squeal
                "median_relative_change,frequency_of_max_change_Hz,"
                "modes_unmatched,estimate_dofs,estimate_seconds,"
                "max_estimated_error,frequency_of_max_estimate_Hz,"
-               "modes_above_tolerance\n";
+               "modes_above_tolerance,degree\n";
       per_mode << "cycle,freq_Hz,re_per_s,estimated_relative_error,"
                   "estimate_partner_freq_Hz,estimate_partner_re_per_s,"
                   "check_freq_Hz,check_re_per_s,check_relative_error\n";
       ConditionalOStream quiet(std::cout, false);
+      // the last h-refinement step: DoFs before and after, the largest
+      // estimate before
+      struct
+      {
+        types::global_dof_index dofs_before = 0;
+        double                  estimate_before = 0.;
+        types::global_dof_index dofs_after = 0;
+      } h_step;
       std::vector<eigen::EigenPair>                  pairs;
       std::vector<std::vector<std::complex<double>>> shapes;
       std::vector<Partner>                           estimate;
@@ -791,7 +1038,7 @@ namespace squeal
       for (;; ++cycle)
         {
           const auto t0    = std::chrono::steady_clock::now();
-          pairs = eigen::solve_full(model.parts(), p0, band, quiet);
+          pairs = eigen::solve_full(model->parts(), p0, band, quiet);
           const double seconds = std::chrono::duration<double>(
                                    std::chrono::steady_clock::now() - t0)
                                    .count();
@@ -805,12 +1052,12 @@ namespace squeal
           // two shapes mix between meshes, has MAC ~0.5 with each old one;
           // its partner is then either, and the change includes the split
           // of the pair).
-          shapes = full_shapes(model, pairs);
+          shapes = full_shapes(*model, pairs);
           double       f_worst     = 0.;
           unsigned int n_unmatched = 0;
           // this mesh's support points: the new side of the comparison now,
           // the old side after the refinement
-          auto [points, component] = physics::dof_support_points(model);
+          auto [points, component] = physics::dof_support_points(*model);
           if (!f_prev.empty())
             {
               std::map<std::array<long long, 4>, unsigned int> new_index;
@@ -876,8 +1123,8 @@ namespace squeal
               e_median = e[e.size() / 2];
             }
           pcout << "Adaptive cycle " << cycle << ": "
-                << model.triangulation.n_active_cells() << " cells, "
-                << model.n_dofs() << " DoFs, " << f.size()
+                << model->triangulation.n_active_cells() << " cells, "
+                << model->n_dofs() << " DoFs, " << f.size()
                 << " modes in the band, full solve " << std::setprecision(3)
                 << seconds << " s";
           if (e_max >= 0.)
@@ -888,18 +1135,20 @@ namespace squeal
                                           " modes without a partner" :
                                         std::string());
           pcout << std::setprecision(6) << std::endl;
-          table << cycle << ',' << model.triangulation.n_active_cells() << ','
-                << model.n_dofs() << ',' << seconds << ',' << f.size() << ','
+          table << cycle << ',' << model->triangulation.n_active_cells() << ','
+                << model->n_dofs() << ',' << seconds << ',' << f.size() << ','
                 << e_max << ',' << e_median << ',' << f_worst << ','
                 << n_unmatched;
 
           // the error estimate: the same mesh at degree + 1
-          std::vector<bool> above(pairs.size(), false);
+          std::vector<bool>       above(pairs.size(), false);
+          types::global_dof_index rich_dofs = 0;
+          double                  worst     = 0.;
           if (by_tolerance)
             {
               const auto t1 = std::chrono::steady_clock::now();
-              types::global_dof_index rich_dofs = 0;
-              estimate = partners_at_degree(prm, model, pairs, shapes, 1, p0,
+              rich_dofs = 0;
+              estimate = partners_at_degree(model->prm, *model, pairs, shapes, 1, p0,
                                             wide,
                                             m.estimate_solver == "projected",
                                             rich_dofs);
@@ -909,10 +1158,13 @@ namespace squeal
               // verification A3), the error is at most 1.5 x the difference.
               for (auto &pe : estimate)
                 pe.difference = std::min(1., 1.5 * pe.difference);
+              const unsigned int n_shared =
+                share_within_clusters(pairs, estimate);
               const double t_est = std::chrono::duration<double>(
                                      std::chrono::steady_clock::now() - t1)
                                      .count();
-              double       worst = 0., f_at = 0.;
+              worst = 0.;
+              double       f_at = 0.;
               unsigned int n_above = 0;
               for (unsigned int k = 0; k < pairs.size(); ++k)
                 if (in_band(f[k]))
@@ -925,22 +1177,71 @@ namespace squeal
                     above[k] = estimate[k].difference > m.frequency_tolerance;
                     n_above += above[k];
                   }
-              pcout << "  estimated error (degree " << m.fe_degree + 1
+              pcout << "  estimated error (degree " << model->fe.degree + 1
                     << ", " << rich_dofs << " DoFs, "
                     << std::setprecision(3) << t_est << " s): largest "
                     << 100. * worst << " % (" << f_at << " Hz), " << n_above
                     << " modes above the tolerance "
-                    << 100. * m.frequency_tolerance << " %"
-                    << std::setprecision(6) << std::endl;
+                    << 100. * m.frequency_tolerance << " %";
+              if (n_shared > 0)
+                pcout << " (" << n_shared
+                      << " modes take a closer neighbour's larger estimate)";
+              pcout << std::setprecision(6) << std::endl;
               table << ',' << rich_dofs << ',' << t_est << ',' << worst
                     << ',' << f_at << ',' << n_above;
               reached = n_above == 0;
             }
           else
             table << ",,,,,";
-          table << '\n';
+          table << ',' << model->fe.degree << '\n';
           if (reached || cycle == m.adaptive_cycles)
             break;
+          // h or p (Mesh/Degree adaptivity): the largest estimate's decay
+          // per DoF, rho = log(e_before / e_after) / log(N_after /
+          // N_before), measured on the last h step, against the one
+          // degree + 1 on the same mesh is predicted to give: a third of
+          // the error (the assumption behind the factor 1.5) for the
+          // estimate's own DoFs, log 3 / log(N_p+1 / N_p). The first step
+          // is h, to measure it. The degree goes up to 3 (its estimate
+          // solves degree 4; with Check estimate to 2).
+          const unsigned int degree = model->fe.degree;
+          if (by_tolerance && m.degree_adaptivity &&
+              degree + 2 <= (m.check_estimate ? 3u : 4u) &&
+              h_step.dofs_after == model->n_dofs() && h_step.dofs_before > 0)
+            {
+              const double rho_h =
+                std::log(h_step.estimate_before / worst) /
+                std::log(double(h_step.dofs_after) / h_step.dofs_before);
+              const double rho_p =
+                std::log(3.) / std::log(double(rich_dofs) / model->n_dofs());
+              pcout << "  h or p: the last refinement reduced the largest "
+                       "estimate at rate "
+                    << std::setprecision(3) << rho_h
+                    << " per log DoFs, degree " << degree + 1
+                    << " is predicted at " << rho_p << std::setprecision(6);
+              if (rho_p > rho_h)
+                {
+                  pcout << ": degree " << degree + 1 << " on the same mesh"
+                        << std::endl;
+                  auto raised = std::make_unique<parameters::AllParameters>(
+                    model->prm);
+                  raised->mesh.fe_degree = degree + 1;
+                  auto rebuilt =
+                    std::make_unique<physics::StructuralModel>(*raised, comm);
+                  rebuilt->interface_mask = model->interface_mask;
+                  rebuilt->setup_and_assemble(quiet);
+                  rebuilt->replay_refinement(model->refinement_history, quiet);
+                  f_prev         = f;
+                  prev_shapes    = std::move(shapes);
+                  prev_points    = std::move(points);
+                  prev_component = std::move(component);
+                  model          = std::move(rebuilt); // the old model first,
+                  raised_prm     = std::move(raised);  // then its parameters
+                  continue;
+                }
+              pcout << ": h-refinement" << std::endl;
+            }
+          h_step = {model->n_dofs(), worst, 0};
           // the modes that drive the refinement: those above the tolerance,
           // or all without one
           // (with a tolerance each mode's indicator is scaled to its
@@ -963,22 +1264,23 @@ namespace squeal
           prev_shapes    = std::move(shapes); // reassigned by the next solve
           prev_points    = std::move(points);
           prev_component = std::move(component);
-          model.refine(indicator, m.refinement_fraction,
+          model->refine(indicator, m.refinement_fraction,
                        m.marking == "error", quiet);
+          h_step.dofs_after = model->n_dofs();
         }
       if (by_tolerance)
         {
           if (reached)
             pcout << "Frequency tolerance " << 100. * m.frequency_tolerance
                   << " % reached after " << cycle << " refinement cycles: "
-                  << model.n_dofs() << " DoFs" << std::endl;
+                  << model->n_dofs() << " DoFs" << std::endl;
           else
             pcout << "Warning: Mesh/Frequency tolerance "
                   << 100. * m.frequency_tolerance
                   << " % not reached after Mesh/Adaptive cycles = " << cycle
                   << " refinements (adaptive_modes.csv lists the modes above "
                      "it); the sweep runs on the last mesh, "
-                  << model.n_dofs() << " DoFs" << std::endl;
+                  << model->n_dofs() << " DoFs" << std::endl;
         }
 
       // the estimate checked against degree + 2 on the final mesh
@@ -987,14 +1289,14 @@ namespace squeal
         {
           const auto t1 = std::chrono::steady_clock::now();
           types::global_dof_index check_dofs = 0;
-          check = partners_at_degree(prm, model, pairs, shapes, 2, p0, wide,
+          check = partners_at_degree(model->prm, *model, pairs, shapes, 2, p0, wide,
                                      false, check_dofs);
           double worst_ratio = 0.;
           for (unsigned int k = 0; k < pairs.size(); ++k)
             if (in_band(frequency(pairs[k].lambda)) && check[k].difference > 0.)
               worst_ratio = std::max(worst_ratio, check[k].difference /
                                                     estimate[k].difference);
-          pcout << "Check of the estimate (degree " << m.fe_degree + 2
+          pcout << "Check of the estimate (degree " << model->fe.degree + 2
                 << ", " << check_dofs << " DoFs, " << std::setprecision(3)
                 << std::chrono::duration<double>(
                      std::chrono::steady_clock::now() - t1)
@@ -1035,17 +1337,17 @@ namespace squeal
                                           const physics::PETScVector &im,
                                           const std::string &         name) const
     {
-      physics::PETScVector ghosted_re(model.locally_owned_dofs,
-                                      model.locally_relevant_dofs, comm),
-        ghosted_im(model.locally_owned_dofs, model.locally_relevant_dofs, comm);
+      physics::PETScVector ghosted_re(model->locally_owned_dofs,
+                                      model->locally_relevant_dofs, comm),
+        ghosted_im(model->locally_owned_dofs, model->locally_relevant_dofs, comm);
       physics::PETScVector r = re, i = im;
-      model.constraints.distribute(r);
-      model.constraints.distribute(i);
+      model->constraints.distribute(r);
+      model->constraints.distribute(i);
       ghosted_re = r;
       ghosted_im = i;
 
       DataOut<3> data_out;
-      data_out.attach_dof_handler(model.dof_handler);
+      data_out.attach_dof_handler(model->dof_handler);
       const std::vector<DataComponentInterpretation::DataComponentInterpretation>
         vector(3, DataComponentInterpretation::component_is_part_of_vector);
       data_out.add_data_vector(ghosted_re,
@@ -1054,11 +1356,11 @@ namespace squeal
       data_out.add_data_vector(ghosted_im,
                                std::vector<std::string>(3, "mode_imag"),
                                DataOut<3>::type_dof_data, vector);
-      Vector<float> material(model.triangulation.n_active_cells());
-      for (const auto &cell : model.triangulation.active_cell_iterators())
+      Vector<float> material(model->triangulation.n_active_cells());
+      for (const auto &cell : model->triangulation.active_cell_iterators())
         material[cell->active_cell_index()] = cell->material_id();
       data_out.add_data_vector(material, "body");
-      data_out.build_patches(model.mapping, model.fe.degree,
+      data_out.build_patches(model->mapping, model->fe.degree,
                              DataOut<3>::curved_inner_cells);
       data_out.write_vtu_with_pvtu_record(work_dir + "/modes/", name, 0, comm,
                                           0, 0);
@@ -1269,10 +1571,10 @@ namespace squeal
       // modes (disc, pad, support) and to calibrate the support.
       std::array<physics::PETScVector, 3> body_mask;
       for (auto &m : body_mask)
-        m.reinit(model.locally_owned_dofs, comm);
+        m.reinit(model->locally_owned_dofs, comm);
       {
-        std::vector<types::global_dof_index> dofs(model.fe.n_dofs_per_cell());
-        for (const auto &cell : model.dof_handler.active_cell_iterators())
+        std::vector<types::global_dof_index> dofs(model->fe.n_dofs_per_cell());
+        for (const auto &cell : model->dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
             {
               cell->get_dof_indices(dofs);
@@ -1305,7 +1607,7 @@ namespace squeal
             std::array<double, 3> e{};
             for (const auto *x : {&re, &im})
               {
-                model.mass.vmult(Mx, *x);
+                model->mass.vmult(Mx, *x);
                 for (unsigned int b = 0; b < 3; ++b)
                   {
                     weighted = *x;
@@ -1320,7 +1622,7 @@ namespace squeal
                           << e[1] / total << ',' << e[2] / total << ','
                           << '"'
                           << (e[0] > 0.5 * total ?
-                                disc_mode_name(model, re, im) :
+                                disc_mode_name(*model, re, im) :
                                 (e[1] > e[2] ? "pad" : "support"))
                           << "\"\n";
           }

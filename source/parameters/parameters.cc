@@ -349,6 +349,25 @@ namespace squeal
                         Patterns::Integer(0, 4),
                         "Local refinement cycles of the disc cells under the "
                         "pad footprint (hanging nodes are constrained).");
+      prm.declare_entry(
+        "Contact refinements", std::to_string(contact_refinements),
+        Patterns::Integer(0, 4),
+        "Scene/Analysis = preloaded cea: refinement cycles of the contact "
+        "region driven by the preload's contact pressure, before the "
+        "adaptive cycles. Each refines Contact refinement fraction of the "
+        "cells with a face on the pad face or the disc track under it: "
+        "those over whose contact face the preload's nodal pressure varies "
+        "most (max - min over the pad nodes in the face's footprint and "
+        "nearest its vertices, i.e. the pressure gradient times the cell "
+        "size), so the pad's leading edge and its separation front are "
+        "refined, not the whole disc (contact_refinement.csv). 0: none. "
+        "Without a preload use Disc refinements under pad (geometry).");
+      prm.declare_entry("Contact refinement fraction",
+                        str(contact_refinement_fraction),
+                        Patterns::Double(0.01, 1.),
+                        "Per contact refinement cycle: the fraction of the "
+                        "contact-face cells (pad and disc track) refined, "
+                        "those of largest pressure variation.");
       prm.declare_entry("Adaptive cycles", std::to_string(adaptive_cycles),
                         Patterns::Integer(0, 10),
                         "CEA: refinement cycles before the sweep. Each solves "
@@ -396,7 +415,9 @@ namespace squeal
                         "to the same fraction of 2 pi f. Each cycle "
                         "estimates each mode's error as 1.5 x its distance "
                         "to the same mesh at degree + 1 (modes paired by "
-                        "shape) and refines, driven by the modes above the "
+                        "shape; modes closer to each other than three times "
+                        "their shifts share the largest estimate among them) "
+                        "and refines, driven by the modes above the "
                         "tolerance, until every estimate is below it or "
                         "Adaptive cycles refinements are spent (a warning "
                         "then). 0: off (the cycles run their fixed number). "
@@ -409,6 +430,19 @@ namespace squeal
                         "estimate (adaptive_modes.csv): the estimate checked "
                         "against a much richer discretisation. Needs "
                         "Finite element degree <= 2; costly.");
+      prm.declare_entry(
+        "Degree adaptivity", degree_adaptivity ? "true" : "false",
+        Patterns::Bool(),
+        "CEA with a Frequency tolerance: choose between h and p. After an "
+        "h step (Kelly refinement) the rate at which the largest estimate "
+        "fell, log(e_before / e_after) / log(N_after / N_before), is "
+        "compared with the rate degree + 1 on the same mesh is predicted to "
+        "give (a third of the error for the DoFs its estimate already "
+        "counted: log 3 / log(N_p+1 / N_p)); where the latter is larger the "
+        "next cycle raises the degree on the same mesh instead of refining "
+        "(up to degree 3; 2 with Check estimate). The first step is always "
+        "h, to measure its rate. adaptive_cycles.csv has the degree of "
+        "each cycle.");
       prm.leave_subsection();
     }
 
@@ -424,12 +458,16 @@ namespace squeal
       pad_cells_thickness        = prm.get_integer("Pad cells thickness");
       support_cells_length       = prm.get_integer("Support cells length");
       disc_refinements_under_pad = prm.get_integer("Disc refinements under pad");
+      contact_refinements        = prm.get_integer("Contact refinements");
+      contact_refinement_fraction =
+        prm.get_double("Contact refinement fraction");
       adaptive_cycles            = prm.get_integer("Adaptive cycles");
       refinement_fraction        = prm.get_double("Refinement fraction");
       marking                    = prm.get("Marking");
       estimate_solver            = prm.get("Estimate solver");
       frequency_tolerance        = prm.get_double("Frequency tolerance");
       check_estimate             = prm.get_bool("Check estimate");
+      degree_adaptivity          = prm.get_bool("Degree adaptivity");
       check(frequency_tolerance == 0. || fe_degree <= 3,
             "Mesh/Frequency tolerance = " + str(frequency_tolerance) +
               " estimates the error at Finite element degree + 1, which must "
@@ -982,6 +1020,14 @@ namespace squeal
       preload.parse_parameters(prm);
       transient.parse_parameters(prm);
       output.parse_parameters(prm);
+      check(mesh.contact_refinements == 0 ||
+              scene.analysis == "preloaded cea",
+            "Mesh/Contact refinements = " +
+              std::to_string(mesh.contact_refinements) +
+              " refines by the preload's contact pressure and needs "
+              "Scene/Analysis = preloaded cea (it is " + scene.analysis +
+              "); without a preload set it to 0 and refine the disc track "
+              "by geometry with Mesh/Disc refinements under pad");
     }
 
     ScalarPoint

@@ -21,6 +21,9 @@ solution of the final mesh, which squeal writes beside the estimate. Checks:
   row at least one mode above it; DoFs grow from cycle to cycle;
 - the final mesh meets the tolerance in truth: the largest true error of
   the band is below the tolerance;
+- with Mesh/Degree adaptivity = true (adaptive_tolerance_degree.prm): the
+  first step is h, a later one raises the degree; h alone over the same
+  cycles misses the tolerance with a largest estimate at least 5x larger;
 - refusals: a tolerance with degree 4, Check estimate without a tolerance.
 """
 import csv
@@ -112,6 +115,27 @@ check("no mode's estimate is below half its true error",
 largest_true = max(true_errors)
 check("the final mesh meets the tolerance in truth", largest_true < tol,
       f"largest true error {100 * largest_true:.3f} % against {100 * tol:g} %", True)
+
+
+if any(line.split()[:5] == ["set", "Degree", "adaptivity", "=", "true"]
+       for line in text.splitlines()):
+    # h or p: the first step is h, then the degree goes up at least once
+    degrees = [int(r["degree"]) for r in cycles]
+    check("h or p: the first step refines, a later one raises the degree",
+          len(degrees) > 2 and degrees[1] == degrees[0] and degrees[-1] > degrees[0]
+          and "h or p:" in log, str(degrees), True)
+    # the same cycles by h alone miss the tolerance by far
+    h_out, h_log = run_squeal(squeal, prm, "h_only",
+                              "subsection Mesh\n  set Degree adaptivity = false\nend\n")
+    h_cycles = table(os.path.join(h_out, "adaptive_cycles.csv"))
+    h_worst = float(h_cycles[-1]["max_estimated_error"])
+    check("h alone, same cycles: misses the tolerance, its largest estimate "
+          "at least 5x the h-or-p run's",
+          len(h_cycles) == len(cycles) and h_worst > tol
+          and h_worst > 5 * float(cycles[-1]["max_estimated_error"]),
+          f"h alone {100 * h_worst:.3g} % on {h_cycles[-1]['dofs']} DoFs, h or p "
+          f"{100 * float(cycles[-1]['max_estimated_error']):.3g} % on "
+          f"{cycles[-1]['dofs']} DoFs", True)
 
 
 def refused(name, extra, words):

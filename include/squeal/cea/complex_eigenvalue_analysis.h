@@ -21,6 +21,7 @@
 #include <squeal/physics/structural_model.h>
 
 #include <complex>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -111,7 +112,12 @@ namespace squeal
       mutable dealii::TimerOutput      timer;
       std::string                      work_dir; ///< written, then renamed
 
-      physics::StructuralModel model;
+      /// The model of the sweep: built at Mesh/Finite element degree,
+      /// rebuilt at a higher degree on the same mesh when Mesh/Degree
+      /// adaptivity raises it (then from *raised_prm).
+      std::unique_ptr<physics::StructuralModel> model;
+      /// The parameters of a model whose degree was raised (else null).
+      std::unique_ptr<parameters::AllParameters> raised_prm;
       eigen::ReducedModel      reduced;
 
       /// The reduced basis' sample points: the ends of each swept

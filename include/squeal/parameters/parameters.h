@@ -62,6 +62,11 @@ namespace squeal
       unsigned int pad_cells_thickness   = 2;
       unsigned int support_cells_length  = 10; ///< along z; 10 divides 11 spring stations
       unsigned int disc_refinements_under_pad = 0;
+      /// preloaded CEA: refinement cycles of the contact region driven by
+      /// the preload's contact pressure variation (0: none)
+      unsigned int contact_refinements = 0;
+      /// preloaded CEA: fraction of the contact-face cells refined per cycle
+      double       contact_refinement_fraction = 0.25;
       /// CEA: adaptive refinement cycles before the sweep (0: none)
       unsigned int adaptive_cycles    = 0;
       /// CEA: fraction of the cells refined per cycle (largest indicator)
@@ -79,6 +84,10 @@ namespace squeal
       std::string  estimate_solver = "projected";
       /// CEA: check the estimate against degree + 2 on the final mesh
       bool         check_estimate      = false;
+      /// CEA with a tolerance: after each h step, raise the degree on the
+      /// same mesh instead where that is predicted to reduce the error
+      /// faster per DoF (up to degree 3)
+      bool         degree_adaptivity   = false;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };
