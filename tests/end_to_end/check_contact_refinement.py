@@ -31,11 +31,9 @@ with 0 and 2 contact refinement cycles (fraction 0.25). Checks:
 import csv
 import math
 import os
-import shutil
-import subprocess
 import sys
 
-from checks import check, finish
+from checks import check, finish, run_table_point
 
 squeal, prm, work = sys.argv[1:4]
 prm = os.path.abspath(prm)
@@ -45,35 +43,14 @@ FRACTION = 0.25
 
 
 def run(name, cycles, mpi=0, analysis="preloaded cea"):
-    out = os.path.abspath(name)
-    shutil.rmtree(out, ignore_errors=True)
-    with open(name + ".prm", "w") as f:
-        f.write(f"""include {prm}
-subsection Scene
+    return run_table_point(squeal, prm, name, f"""subsection Scene
   set Analysis = {analysis}
 end
 subsection Mesh
   set Contact refinements = {cycles}
   set Contact refinement fraction = {FRACTION}
 end
-subsection Eigensolver
-  set Method = full
-end
-subsection Sweep
-  set First parameter = pad modulus
-  set First values = 25e9
-  set Second parameter = friction coefficient
-  set Second values = 0.5
-end
-subsection Output
-  set Directory = {out}
-  set Mode shapes = none
-end
-""")
-    launcher = ["mpirun", "-np", str(mpi)] if mpi else []
-    r = subprocess.run(launcher + [squeal, name + ".prm"], capture_output=True,
-                       text=True)
-    return out, r
+""", mpi)
 
 
 def eigenvalues(out):

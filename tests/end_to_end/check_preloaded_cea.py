@@ -17,9 +17,9 @@ solver):
 """
 import csv
 import os
-import shutil
-import subprocess
 import sys
+
+from checks import run_table_point
 
 squeal, prm, work = sys.argv[1:4]
 prm = os.path.abspath(prm)
@@ -33,33 +33,13 @@ def fail(msg):
 
 
 def run(name, analysis, friction, mpi=0):
-    out = os.path.abspath(name)
-    shutil.rmtree(out, ignore_errors=True)
-    with open(name + ".prm", "w") as f:
-        f.write(f"""include {prm}
-subsection Scene
+    out, r = run_table_point(squeal, prm, name, f"""subsection Scene
   set Analysis = {analysis}
 end
 subsection Preload
   set Friction = {friction}
 end
-subsection Eigensolver
-  set Method = full
-end
-subsection Sweep
-  set First parameter = pad modulus
-  set First values = 25e9
-  set Second parameter = friction coefficient
-  set Second values = 0.5
-end
-subsection Output
-  set Directory = {out}
-  set Mode shapes = none
-end
-""")
-    launcher = ["mpirun", "-np", str(mpi)] if mpi else []
-    r = subprocess.run(launcher + [squeal, name + ".prm"], capture_output=True,
-                       text=True)
+""", mpi)
     if r.returncode != 0:
         fail(f"{name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
     with open(os.path.join(out, "eigenvalues.csv"), newline="") as f:

@@ -38,3 +38,33 @@ def run_squeal(squeal, base_prm, name, extra=""):
         print(f"FAILED: {name}: exit {r.returncode}\n{r.stdout[-3000:]}\n{r.stderr}")
         sys.exit(1)
     return out, r.stdout
+
+
+def run_table_point(squeal, base_prm, name, extra, mpi=0):
+    """Writes NAME.prm (include BASE_PRM, then EXTRA, then the full solver
+    at the single point E_pad = 25 GPa, mu = 0.5 of thesis Table 3.1 and
+    Output/Directory = NAME without mode shapes), runs squeal on it into a
+    fresh folder NAME, under `mpirun -np MPI` if MPI. Returns (folder,
+    subprocess.CompletedProcess); the caller judges the exit code."""
+    out = os.path.abspath(name)
+    shutil.rmtree(out, ignore_errors=True)
+    with open(name + ".prm", "w") as f:
+        f.write(f"""include {base_prm}
+{extra}subsection Eigensolver
+  set Method = full
+end
+subsection Sweep
+  set First parameter = pad modulus
+  set First values = 25e9
+  set Second parameter = friction coefficient
+  set Second values = 0.5
+end
+subsection Output
+  set Directory = {out}
+  set Mode shapes = none
+end
+""")
+    launcher = ["mpirun", "-np", str(mpi)] if mpi else []
+    return out, subprocess.run(launcher + [squeal, name + ".prm"],
+                               capture_output=True, text=True)
+
