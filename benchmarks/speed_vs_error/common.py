@@ -17,15 +17,28 @@ def run_squeal(squeal, body, out, ranks=1):
     """Writes BODY plus an Output subsection (directory OUT, overwrite, no
     mode shapes) to OUT.prm, runs SQUEAL on it (under mpirun -np RANKS when
     RANKS > 1) and returns (stdout, wall seconds); exits with squeal's
-    output if it fails."""
+    output if it fails. A finished run is recorded in OUT.run.json (its
+    parameter text, rank count, stdout and time); a later call with the same
+    text and ranks whose output is still there returns that record instead
+    of running again, so an interrupted benchmark resumes where it stopped."""
+    import json
     prm = out + ".prm"
-    with open(prm, "w") as f:
-        f.write(body + f"""subsection Output
+    text = body + f"""subsection Output
   set Directory = {out}
   set Overwrite = true
   set Mode shapes = none
 end
-""")
+"""
+    record = out + ".run.json"
+    if os.path.exists(record) and os.path.isdir(out):
+        with open(record) as f:
+            r = json.load(f)
+        if r["prm"] == text and r["ranks"] == ranks:
+            print(f"{out}: reusing the finished run ({r['seconds']:.0f} s)",
+                  file=sys.stderr)
+            return r["stdout"], r["seconds"]
+    with open(prm, "w") as f:
+        f.write(text)
     start = time.monotonic()
     command = [squeal, prm]
     if ranks > 1:
@@ -34,6 +47,9 @@ end
     seconds = time.monotonic() - start
     if r.returncode != 0:
         sys.exit(f"{out}: squeal failed\n{r.stdout}\n{r.stderr}")
+    with open(record + ".tmp", "w") as f:
+        json.dump(dict(prm=text, ranks=ranks, stdout=r.stdout, seconds=seconds), f)
+    os.replace(record + ".tmp", record)
     return r.stdout, seconds
 
 
@@ -96,15 +112,16 @@ def disc_errors(freqs):
     return errors
 
 
-def run_disc(squeal, work, degree, around, radial, thick, max_frequency):
+def run_disc(squeal, work, degree, around, radial, thick, max_frequency, ranks=1):
     """One squeal run of the disc alone (full solver, friction and damping
-    off) on a uniform mesh, solved to MAX_FREQUENCY [Hz]; returns a dict with
+    off) on a uniform mesh, solved to MAX_FREQUENCY [Hz] on RANKS MPI ranks;
+    returns a dict with
     the mesh name, degree, DoFs, wall seconds, largest and median error
     (disc_errors) and the number of modes found."""
     import os
     import statistics
     name = f"d{degree}_{around}x{radial}x{thick}"
-    out = os.path.join(work, name)
+    out = os.path.join(work, name + (f"_np{ranks}" if ranks > 1 else ""))
     stdout, seconds = run_squeal(squeal, """subsection Scene
   set Bodies = disc
 end
@@ -117,7 +134,8 @@ subsection Damping
   set Alpha = 0
   set Beta = 0
 end
-""" + single_point_sweep("friction coefficient", 0, "pad modulus", 25e9), out)
+""" + single_point_sweep("friction coefficient", 0, "pad modulus", 25e9), out,
+                                 ranks)
     dofs, modes = read_run(stdout, out)
     errors = disc_errors([f for f, _ in modes])
     return dict(mesh=name, degree=degree, dofs=dofs, seconds=round(seconds, 1),

@@ -428,7 +428,15 @@ namespace squeal
           TimerOutput::Scope t(timer, "full solve");
           Point p;
           p.values = values;
-          p.full   = eigen::solve_full(model->parts(), values, band, pcout);
+          if (points.empty() && !first_point_full.empty())
+            {
+              p.full = first_point_full;
+              pcout << "  full solver: the last adaptive cycle's solve of "
+                       "this point, reused"
+                    << std::endl;
+            }
+          else
+            p.full = eigen::solve_full(model->parts(), values, band, pcout);
           // 1.5 f_max holds about 1.7 times the modes of the band
           band.initial_nev =
             std::max<unsigned int>(40, 1.9 * p.full.size() + 10);
@@ -480,8 +488,14 @@ namespace squeal
       unsigned int missed = 0;
       for (const unsigned int p : chosen)
         {
+          const bool reuse = p == 0 && !first_point_full.empty();
+          if (reuse)
+            pcout << "  point 0: the last adaptive cycle's full solve, reused"
+                  << std::endl;
           const auto full =
-            eigen::solve_full(model->parts(), points[p].values, band, pcout);
+            reuse ? first_point_full :
+                    eigen::solve_full(model->parts(), points[p].values, band,
+                                      pcout);
           // Every full eigenvalue must have a reduced counterpart.
           for (const auto &f : full)
             {
@@ -1330,6 +1344,8 @@ namespace squeal
           if (by_tolerance)
             std::ofstream(work_dir + "/adaptive_modes.csv") << per_mode.str();
         }
+      // the last cycle solved the sweep's first point on the final mesh
+      first_point_full = std::move(pairs);
     }
 
     void

@@ -118,6 +118,12 @@ namespace squeal
       std::unique_ptr<physics::StructuralModel> model;
       /// The parameters of a model whose degree was raised (else null).
       std::unique_ptr<parameters::AllParameters> raised_prm;
+      /// The full solve of the sweep's first point on the final mesh of
+      /// adapt_mesh() (its last cycle), reused as that point by the full
+      /// sweep and by the check against the full solver instead of solving
+      /// it again (same model, same point, same band); empty without
+      /// adaptive cycles or a frequency tolerance.
+      std::vector<eigen::EigenPair> first_point_full;
       eigen::ReducedModel      reduced;
 
       /// The reduced basis' sample points: the ends of each swept
