@@ -13,6 +13,20 @@ def save_png(fig, path):
     print("wrote", path)
 
 
+def finish_pareto(fig, ax, path, title, ylabel,
+                  xlabel="wall time of the run [s] (1 MPI rank)",
+                  legend_size=8):
+    """Labels, grids and lays out the error-against-time axes AX of FIG
+    (log-log, errors in per cent) and saves the figure to PATH (save_png)."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(fontsize=legend_size)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    save_png(fig, path)
+
+
 def run_squeal(squeal, body, out, ranks=1):
     """Writes BODY plus an Output subsection (directory OUT, overwrite, no
     mode shapes) to OUT.prm, runs SQUEAL on it (under mpirun -np RANKS when

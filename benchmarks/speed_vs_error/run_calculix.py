@@ -41,7 +41,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "calculix"))
-from common import disc_errors, run_disc, save_png  # noqa: E402
+from common import disc_errors, finish_pareto, run_disc  # noqa: E402
 from make_decks import DECKS, deck_name, write_all  # noqa: E402
 
 root = os.path.join(here, "..", "..")
@@ -149,14 +149,11 @@ def main():
                   marker, label=label)
     for t in TARGETS:
         ax.axhline(100 * t, color="k", lw=0.6, ls=":")
-    ax.set_xlabel("wall time of the run [s] (2 cores)")
-    ax.set_ylabel("largest frequency error below 20 kHz [%]")
-    ax.set_title("Clamped disc (A3): squeal against CalculiX 2.20")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
     png = os.path.join(here, "calculix_pareto.png")
-    save_png(fig, png)
+    finish_pareto(fig, ax, png,
+                  "Clamped disc (A3): squeal against CalculiX 2.20",
+                  "largest frequency error below 20 kHz [%]",
+                  xlabel="wall time of the run [s] (2 cores)")
 
     print("\n| code | mesh | DoFs | wall time [s] | largest error | median error |")
     print("|---|---|---|---|---|---|")

@@ -36,7 +36,7 @@ import os
 import statistics
 import sys
 
-from common import run_squeal, save_png, single_point_sweep
+from common import finish_pareto, run_squeal, single_point_sweep
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -214,13 +214,9 @@ def main():
     ax.axhline(0.5, color="grey", ls="--", lw=1)
     ax.plot([], [], "o", color="C0", label="largest error in the band")
     ax.plot([], [], "s", color="C1", label="median error")
-    ax.set_xlabel("wall time of the run [s] (1 MPI rank)")
-    ax.set_ylabel("eigenvalue error against degree 4 [%]")
-    ax.set_title("TriboBrake, E_pad = 1 GPa, mu = 0.01, 0.9-20 kHz")
-    ax.legend(fontsize=8)
-    ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    save_png(fig, os.path.join(here, "default_mesh_pareto.png"))
+    finish_pareto(fig, ax, os.path.join(here, "default_mesh_pareto.png"),
+                  "TriboBrake, E_pad = 1 GPa, mu = 0.01, 0.9-20 kHz",
+                  "eigenvalue error against degree 4 [%]")
 
 
 if __name__ == "__main__":

@@ -24,7 +24,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from common import run_disc, save_png  # noqa: E402
+from common import finish_pareto, run_disc  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -72,14 +72,11 @@ def main():
             ax.annotate(f"{r['dofs'] // 1000}k", (r["seconds"], 100 * r["max_error"]),
                         fontsize=7, xytext=(3, 3), textcoords="offset points")
     ax.axhline(0.5, color="k", lw=0.8, ls="--")
-    ax.set_xlabel("wall time of the run [s] (1 MPI rank)")
-    ax.set_ylabel("largest frequency error below 20 kHz [%]")
-    ax.set_title("Clamped disc (A3): error against time, uniform meshes")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend()
-    fig.tight_layout()
     png = os.path.join(here, "disc_pareto.png")
-    save_png(fig, png)
+    finish_pareto(fig, ax, png,
+                  "Clamped disc (A3): error against time, uniform meshes",
+                  "largest frequency error below 20 kHz [%]",
+                  legend_size=10)
     print("\n| mesh | degree | DoFs | wall time [s] | largest error | median error "
           "| mpirun -np 2: wall time [s], largest error |")
     print("|---|---|---|---|---|---|---|")

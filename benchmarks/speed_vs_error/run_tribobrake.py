@@ -24,7 +24,7 @@ import re
 import statistics
 import sys
 
-from common import disc_mesh, read_run, run_squeal, save_png, single_point_sweep
+from common import disc_mesh, finish_pareto, read_run, run_squeal, single_point_sweep
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..", "..")
@@ -131,13 +131,9 @@ def main():
         ax.annotate(f"{dofs}", (seconds, 100 * largest), textcoords="offset points",
                     xytext=(5, 3), fontsize=7)
     ax.axhline(0.5, color="grey", ls="--", lw=1)
-    ax.set_xlabel("wall time of the run [s] (1 MPI rank)")
-    ax.set_ylabel("frequency difference against degree 4 [%]")
-    ax.set_title("TriboBrake, E_pad = 25 GPa, mu = 0.5, 0.9-20 kHz (labels: DoFs)")
-    ax.legend(fontsize=7)
-    ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    save_png(fig, os.path.join(here, "tribobrake_pareto.png"))
+    finish_pareto(fig, ax, os.path.join(here, "tribobrake_pareto.png"),
+                  "TriboBrake, E_pad = 25 GPa, mu = 0.5, 0.9-20 kHz (labels: DoFs)",
+                  "frequency difference against degree 4 [%]", legend_size=7)
 
 
 if __name__ == "__main__":
