@@ -20,7 +20,6 @@ Runs the whole chain and checks:
 Exits non-zero on the first failure.
 """
 import csv
-import math
 import os
 import shutil
 import subprocess

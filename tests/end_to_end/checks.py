@@ -24,16 +24,19 @@ def finish():
     sys.exit(1 if _failures else 0)
 
 
-def run_squeal(squeal, base_prm, name, extra=""):
+def run_squeal(squeal, base_prm, name, extra="", mpi=0):
     """Writes NAME.prm (include BASE_PRM, then EXTRA, then Output/Directory =
-    NAME), runs squeal on it into a fresh folder NAME; stops the check with
-    the output on a non-zero exit. Returns (folder, standard output)."""
+    NAME), runs squeal on it into a fresh folder NAME, under `mpirun -np MPI`
+    if MPI; stops the check with the output on a non-zero exit. Returns
+    (folder, standard output)."""
     out = os.path.abspath(name)
     shutil.rmtree(out, ignore_errors=True)
     with open(name + ".prm", "w") as f:
         f.write(f"include {base_prm}\n{extra}subsection Output\n"
                 f"  set Directory = {out}\nend\n")
-    r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
+    launcher = ["mpirun", "-np", str(mpi)] if mpi else []
+    r = subprocess.run(launcher + [squeal, name + ".prm"], capture_output=True,
+                       text=True)
     if r.returncode != 0:
         print(f"FAILED: {name}: exit {r.returncode}\n{r.stdout[-3000:]}\n{r.stderr}")
         sys.exit(1)
