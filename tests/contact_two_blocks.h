@@ -23,6 +23,7 @@
 
 #include "contact_assembly.h"
 
+#include <functional>
 #include <memory>
 #include <set>
 
@@ -41,8 +42,53 @@ struct TwoBlocks
   TwoBlocks(unsigned int degree, unsigned int upper, unsigned int lower,
             double E_upper, double nu_upper, double E_lower, double nu_lower,
             dealii::Tensor<1, 3> top_traction, double gap = 0.)
+    : TwoBlocks(degree, E_upper, nu_upper, E_lower, nu_lower, top_traction,
+                [&](dealii::Triangulation<3> &t) {
+                  make_mesh(upper, lower, gap, t);
+                })
+  {}
+
+  /** The same set-up on the mesh @p fill makes: material ids 0 (upper) and
+   *  1 (lower), boundary ids as in the file comment. */
+  TwoBlocks(unsigned int degree, double E_upper, double nu_upper,
+            double E_lower, double nu_lower, dealii::Tensor<1, 3> top_traction,
+            const std::function<void(dealii::Triangulation<3> &)> &fill)
     : fe(dealii::FE_Q<3>(degree), 3)
     , dofs(tria)
+  {
+    using namespace dealii;
+    fill(tria);
+    dofs.distribute_dofs(fe);
+    const Functions::ZeroFunction<3> zero(3);
+    VectorTools::interpolate_boundary_values(mapping, dofs, 2, zero, constraints,
+                                             ComponentMask({false, false, true}));
+    VectorTools::interpolate_boundary_values(mapping, dofs, 3, zero, constraints,
+                                             ComponentMask({true, false, false}));
+    VectorTools::interpolate_boundary_values(mapping, dofs, 4, zero, constraints,
+                                             ComponentMask({false, true, false}));
+    constraints.close();
+    DynamicSparsityPattern dsp(dofs.n_dofs());
+    DoFTools::make_sparsity_pattern(dofs, dsp);
+    pattern.copy_from(dsp);
+    K.reinit(pattern);
+    K_free.reinit(pattern);
+    f.reinit(dofs.n_dofs());
+    f_free.reinit(dofs.n_dofs());
+
+    assemble_elastic_system(
+      dofs, mapping, constraints,
+      [&](unsigned int m) {
+        return m == 0 ? std::make_pair(E_upper, nu_upper) :
+                        std::make_pair(E_lower, nu_lower);
+      },
+      {{1, top_traction, &f}}, K, &K_free, &f_free);
+  }
+
+  /** The two blocks of @p upper and @p lower cells per side, the upper one
+   *  shifted by @p gap, with the ids of the file comment. */
+  static void
+  make_mesh(unsigned int upper, unsigned int lower, double gap,
+            dealii::Triangulation<3> &tria)
   {
     using namespace dealii;
     Triangulation<3> a, b;
@@ -76,30 +122,6 @@ struct TwoBlocks
                 cell->face(f)->set_boundary_id(5);
             }
       }
-    dofs.distribute_dofs(fe);
-    const Functions::ZeroFunction<3> zero(3);
-    VectorTools::interpolate_boundary_values(mapping, dofs, 2, zero, constraints,
-                                             ComponentMask({false, false, true}));
-    VectorTools::interpolate_boundary_values(mapping, dofs, 3, zero, constraints,
-                                             ComponentMask({true, false, false}));
-    VectorTools::interpolate_boundary_values(mapping, dofs, 4, zero, constraints,
-                                             ComponentMask({false, true, false}));
-    constraints.close();
-    DynamicSparsityPattern dsp(dofs.n_dofs());
-    DoFTools::make_sparsity_pattern(dofs, dsp);
-    pattern.copy_from(dsp);
-    K.reinit(pattern);
-    K_free.reinit(pattern);
-    f.reinit(dofs.n_dofs());
-    f_free.reinit(dofs.n_dofs());
-
-    assemble_elastic_system(
-      dofs, mapping, constraints,
-      [&](unsigned int m) {
-        return m == 0 ? std::make_pair(E_upper, nu_upper) :
-                        std::make_pair(E_lower, nu_lower);
-      },
-      {{1, top_traction, &f}}, K, &K_free, &f_free);
   }
 
   /** Sum of the reaction forces (K_free u - f_free - f_contact) over the DoFs of

@@ -168,5 +168,21 @@ namespace squeal
         }
       set_boundary_ids();
     }
+
+    scene::NamedSets
+    tribobrake_sets(const Triangulation<3> &tria)
+    {
+      scene::NamedSets sets;
+      sets.source = "the TriboBrake generator";
+      sets.collect_from_ids(tria,
+                            {{material::disc, "disc"},
+                             {material::pad, "pad"},
+                             {material::support, "support"}},
+                            {{boundary::clamped, "disc hub"},
+                             {boundary::pad_contact, "pad face"},
+                             {boundary::disc_contact, "disc face"},
+                             {boundary::support_top, "support top"}});
+      return sets;
+    }
   } // namespace geometry
 } // namespace squeal

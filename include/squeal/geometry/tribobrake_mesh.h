@@ -12,6 +12,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <squeal/parameters/parameters.h>
+#include <squeal/scene/named_sets.h>
 
 namespace squeal
 {
@@ -54,6 +55,14 @@ namespace squeal
                          const parameters::Mesh &    mesh,
                          const bool                  with_pad_and_support,
                          dealii::Triangulation<3> &  tria);
+
+    /**
+     * The named sets of a mesh make_tribobrake_mesh() built: cell sets
+     * `disc`, `pad`, `support`; face sets `disc hub` (clamped), `pad face`,
+     * `disc face`, `support top`; from the coarse cells' ids.
+     */
+    scene::NamedSets
+    tribobrake_sets(const dealii::Triangulation<3> &tria);
   } // namespace geometry
 } // namespace squeal
 
