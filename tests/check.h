@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <exception>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <string>
@@ -48,6 +50,21 @@ namespace test_tools
   {
     static std::ostream sink(nullptr);
     return std::getenv("SQUEAL_VERBOSE") ? std::cerr : sink;
+  }
+
+  /** The message of the exception @p run throws, "" if it throws none. */
+  inline std::string
+  error_of(const std::function<void()> &run)
+  {
+    try
+      {
+        run();
+      }
+    catch (const std::exception &e)
+      {
+        return e.what();
+      }
+    return "";
   }
 
   inline int

@@ -29,6 +29,7 @@
 using namespace dealii;
 using namespace squeal;
 using test_tools::check;
+using test_tools::error_of;
 
 namespace
 {
@@ -216,20 +217,6 @@ namespace
     check(label + ": multipliers and nodal pressures = p to 1e-8", worst, 0.,
           1e-8, 1.);
     check(label + ": normal force = p x area", s.normal_force, p, 1e-10);
-  }
-
-  std::string
-  error_of(const std::function<void()> &run)
-  {
-    try
-      {
-        run();
-      }
-    catch (const std::exception &e)
-      {
-        return e.what();
-      }
-    return "";
   }
 
   void

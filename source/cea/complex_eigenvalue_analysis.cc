@@ -636,18 +636,22 @@ namespace squeal
     Vector<double>
     ComplexEigenvalueAnalysis::mode_indicator(
       const std::vector<eigen::EigenPair> &pairs,
+      const parameters::ScalarPoint       &values,
       const std::vector<double>           &weights) const
     {
       const unsigned int n_cells = model->triangulation.n_active_cells();
       Vector<double>     sum(n_cells);
       physics::PETScVector ghosted(model->locally_owned_dofs,
                                    model->locally_relevant_dofs, comm);
+      // the whole mass of the point: every mass part at its coefficient
+      physics::PETScMatrix M;
+      model->parts().mass(values, M);
       for (const auto &pair : pairs)
         {
           physics::PETScVector re = pair.re, im = pair.im, Mx(pair.re);
-          model->mass.vmult(Mx, re);
+          M.vmult(Mx, re);
           double norm2 = re * Mx;
-          model->mass.vmult(Mx, im);
+          M.vmult(Mx, im);
           norm2 += im * Mx;
           if (!(norm2 > 0.))
             continue;
@@ -705,7 +709,7 @@ namespace squeal
             reduced.expand(pt->q[k], pairs.back().re, pairs.back().im);
           }
       const Vector<double> sum =
-        mode_indicator(pt->q.empty() ? pt->full : pairs);
+        mode_indicator(pt->q.empty() ? pt->full : pairs, pt->values);
       const unsigned int n_cells = model->triangulation.n_active_cells();
       std::array<double, 3> share{};
       Vector<float> indicator(n_cells), body(n_cells);
@@ -1270,7 +1274,7 @@ namespace squeal
                 if (by_tolerance)
                   weights.push_back(estimate[k].difference);
               }
-          const Vector<double> sum = mode_indicator(driving, weights);
+          const Vector<double> sum = mode_indicator(driving, p0, weights);
           Vector<float>        indicator(sum.size());
           for (unsigned int c = 0; c < sum.size(); ++c)
             indicator[c] = std::sqrt(sum[c]);
@@ -1585,21 +1589,6 @@ namespace squeal
           }
       // Kinetic-energy fraction of each body in each written mode, to name
       // modes (disc, pad, support) and to calibrate the support.
-      std::array<physics::PETScVector, 3> body_mask;
-      for (auto &m : body_mask)
-        m.reinit(model->locally_owned_dofs, comm);
-      {
-        std::vector<types::global_dof_index> dofs(model->fe.n_dofs_per_cell());
-        for (const auto &cell : model->dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              cell->get_dof_indices(dofs);
-              for (const auto i : dofs)
-                body_mask[cell->material_id()](i) = 1.;
-            }
-        for (auto &m : body_mask)
-          m.compress(VectorOperation::insert);
-      }
       std::ostringstream participation;
       participation << "point,mode,freq_Hz,re_per_s,disc,pad,support,name\n"
                     << std::setprecision(8);
@@ -1619,18 +1608,11 @@ namespace squeal
           else
             continue;
           {
-            physics::PETScVector Mx(re), weighted(re);
-            std::array<double, 3> e{};
-            for (const auto *x : {&re, &im})
-              {
-                model->mass.vmult(Mx, *x);
-                for (unsigned int b = 0; b < 3; ++b)
-                  {
-                    weighted = *x;
-                    weighted.scale(body_mask[b]);
-                    e[b] += weighted * Mx;
-                  }
-              }
+            // kinetic-energy shares with the whole mass of the point (every
+            // body at its density)
+            std::vector<double> e =
+              physics::kinetic_energy_by_body(*model, pt.values, re, im);
+            e.resize(std::max<std::size_t>(e.size(), 3), 0.);
             const double total = e[0] + e[1] + e[2];
             participation << p << ',' << k << ','
                           << pt.lambda[k].imag() / (2 * M_PI) << ','

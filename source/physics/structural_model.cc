@@ -58,6 +58,54 @@ namespace squeal
                                               m.support;
     }
 
+    double
+    body_density(const parameters::AllParameters &prm,
+                 const types::material_id         id,
+                 const parameters::ScalarPoint   &p)
+    {
+      return id == geometry::material::support ?
+               p.support_density :
+               body_material(prm.materials, id).density;
+    }
+
+    std::vector<double>
+    kinetic_energy_by_body(const StructuralModel         &model,
+                           const parameters::ScalarPoint &p,
+                           const PETScVector             &re,
+                           const PETScVector             &im)
+    {
+      types::material_id largest = 0;
+      for (const auto &cell : model.triangulation.active_cell_iterators())
+        largest = std::max(largest, cell->material_id());
+      largest = Utilities::MPI::max(largest, model.comm);
+      std::vector<double> energy(largest + 1, 0.);
+      const QGauss<3>     quadrature(model.fe.degree + 1);
+      FEValues<3>         fe_values(model.mapping, model.fe, quadrature,
+                            update_values | update_JxW_values);
+      std::vector<Vector<double>> values(quadrature.size(), Vector<double>(3));
+      for (const PETScVector *x : {&re, &im})
+        {
+          PETScVector owned = *x;
+          model.constraints.distribute(owned);
+          PETScVector ghosted(model.locally_owned_dofs,
+                              model.locally_relevant_dofs, model.comm);
+          ghosted = owned;
+          for (const auto &cell : model.dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                fe_values.reinit(cell);
+                fe_values.get_function_values(ghosted, values);
+                const double rho = body_density(model.prm, cell->material_id(), p);
+                for (unsigned int q = 0; q < quadrature.size(); ++q)
+                  energy[cell->material_id()] +=
+                    rho * (values[q] * values[q]) * fe_values.JxW(q);
+              }
+        }
+      std::vector<double> total(energy.size());
+      Utilities::MPI::sum(energy, model.comm, total);
+      return total;
+    }
+
     std::pair<std::vector<Point<3>>, std::vector<unsigned int>>
     dof_support_points(const StructuralModel &model)
     {
@@ -365,7 +413,7 @@ namespace squeal
             const double E = is_pad ? reference.E_pad : m.youngs_modulus;
             const double nu = m.poisson_ratio;
             const double density =
-              is_support ? reference.support_density : m.density;
+              body_density(prm, cell->material_id(), reference);
             const auto [lambda, mu] = lame_constants(E, nu);
 
             fe_values.reinit(cell);

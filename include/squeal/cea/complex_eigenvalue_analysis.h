@@ -94,11 +94,14 @@ namespace squeal
       /// the share of each body, printed
       void
       write_error_indicator() const;
-      /// Kelly's indicator of @p pairs, squared and summed per active cell;
-      /// with @p weights (one per pair) each mode's squared field is scaled
-      /// to a sum of weight^2 over the mesh
+      /// Kelly's indicator of @p pairs (modes of the point @p values, each
+      /// scaled to unit kinetic norm with that point's whole mass M(p)),
+      /// squared and summed per active cell; with @p weights (one per pair)
+      /// each mode's squared field is scaled to a sum of weight^2 over the
+      /// mesh
       dealii::Vector<double>
       mode_indicator(const std::vector<eigen::EigenPair> &pairs,
+                     const parameters::ScalarPoint       &values,
                      const std::vector<double> &weights = {}) const;
       /// Mesh/Adaptive cycles and Mesh/Frequency tolerance: refine before
       /// the sweep; adaptive_cycles.csv, adaptive_modes.csv

@@ -271,6 +271,33 @@ namespace squeal
     };
 
     /**
+     * The density [kg/m^3] of the body with material id @p id at the point
+     * @p p: the swept support density for the support, the file's value
+     * for the other bodies (what the mass parts are scaled by).
+     */
+    double
+    body_density(const parameters::AllParameters &prm,
+                 dealii::types::material_id       id,
+                 const parameters::ScalarPoint   &p);
+
+    /**
+     * Twice the kinetic energy per unit angular frequency squared of the
+     * mode re + i im of @p model in each body, at the point @p p:
+     * e_b = int_{body b} rho_b(p) (|u_re|^2 + |u_im|^2) dV [kg m^2 per unit
+     * modal amplitude squared], by Gauss quadrature of degree + 1 on the
+     * cells of body b (material id b; n entries, n the largest id + 1), the
+     * hanging-node values filled in. The e_b sum to re^T M(p) re +
+     * im^T M(p) im of the assembled mass: the shares e_b / sum e_b use the
+     * whole mass of the point, every body at its density.
+     * @p re, @p im: locally owned vectors of n_dofs entries [m].
+     */
+    std::vector<double>
+    kinetic_energy_by_body(const StructuralModel         &model,
+                           const parameters::ScalarPoint &p,
+                           const PETScVector             &re,
+                           const PETScVector             &im);
+
+    /**
      * The support point [m] and the component (0, 1, 2) of every DoF of
      * @p model, from all cells of its mesh (every rank holds the whole
      * parallel::shared mesh, so every rank gets all n_dofs entries).
