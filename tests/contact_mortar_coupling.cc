@@ -86,15 +86,23 @@ namespace
       dofs.reinit(tria);
       dofs.distribute_dofs(fe);
       constraints.close();
-      const auto points = contact::interface_quadrature(
-        dofs, mapping, rule, rule == "nodal" ? degree + 1 : degree + 2);
+      scene::ContactPair pair;
+      pair.name          = "pad on disc";
+      pair.slave         = geometry::boundary::pad_contact;
+      pair.master        = geometry::boundary::disc_contact;
+      pair.normal        = Tensor<1, 3>({0., 0., 1.});
+      pair.plane_axes[0] = Tensor<1, 3>({1., 0., 0.});
+      pair.plane_axes[1] = Tensor<1, 3>({0., 1., 0.});
+      pair.sliding       = tangent;
+      const auto points  = contact::interface_quadrature(
+        dofs, mapping, pair, rule, rule == "nodal" ? degree + 1 : degree + 2);
       DynamicSparsityPattern dsp(dofs.n_dofs());
       DoFTools::make_sparsity_pattern(dofs, dsp);
       contact::add_interface_sparsity(points, constraints, dsp);
       const IndexSet all = complete_index_set(dofs.n_dofs());
       K_n.reinit(all, all, dsp, MPI_COMM_SELF);
       K_t.reinit(all, all, dsp, MPI_COMM_SELF);
-      contact::assemble_interface(points, constraints, k, tangent, K_n, K_t);
+      contact::assemble_interface(points, constraints, k, pair, K_n, K_t);
       K_n.compress(VectorOperation::add);
       K_t.compress(VectorOperation::add);
       DoFTools::map_dofs_to_support_points(mapping, dofs, where);

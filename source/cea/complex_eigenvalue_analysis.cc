@@ -15,7 +15,6 @@
 #include <squeal/cea/complex_eigenvalue_analysis.h>
 #include <squeal/contact/preload.h>
 #include <squeal/output/output_directory.h>
-#include <squeal/geometry/tribobrake_mesh.h>
 
 #include <algorithm>
 #include <array>
@@ -63,12 +62,17 @@ namespace squeal
       unsigned int
       refine_by_contact_pressure(
         physics::StructuralModel                                   &model,
-        const std::vector<std::pair<dealii::Point<3>, double>>     &nodes,
+        const std::vector<std::pair<dealii::Point<3>, double>>     &nodes_3d,
         const double                                                fraction,
         const unsigned int                                          cycle,
         std::ostream                                               &csv,
         ConditionalOStream                                         &pcout)
       {
+        // everything in the contact pair's plane coordinates
+        const scene::ContactPair &pair = contact::single_pair(*model.scene);
+        std::vector<std::pair<Point<2>, double>> nodes;
+        for (const auto &[x, p] : nodes_3d)
+          nodes.emplace_back(pair.to_plane(x), p);
         double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
         for (const auto &[x, p] : nodes)
           {
@@ -116,7 +120,7 @@ namespace squeal
             "tensor grid over the pad face (" + std::to_string(nodes.size()) +
             " nodes, " + std::to_string(xs.size()) + " x " +
             std::to_string(ys.size()) + " coordinates)");
-        const auto pressure_at = [&](const dealii::Point<3> &x) {
+        const auto pressure_at = [&](const dealii::Point<2> &x) {
           const auto [i, t] = locate(xs, x[0]);
           const auto [j, u] = locate(ys, x[1]);
           const auto g      = [&](unsigned int a, unsigned int b) {
@@ -136,14 +140,14 @@ namespace squeal
               {
                 const auto face = cell->face(f);
                 if (!face->at_boundary() ||
-                    (face->boundary_id() != geometry::boundary::pad_contact &&
-                     face->boundary_id() != geometry::boundary::disc_contact))
+                    (face->boundary_id() != pair.slave &&
+                     face->boundary_id() != pair.master))
                   continue;
                 double fx_lo = 1e300, fx_hi = -1e300, fy_lo = 1e300,
                        fy_hi = -1e300;
                 for (const auto v : face->vertex_indices())
                   {
-                    const auto &x = face->vertex(v);
+                    const Point<2> x = pair.to_plane(face->vertex(v));
                     fx_lo         = std::min(fx_lo, x[0]);
                     fx_hi         = std::max(fx_hi, x[0]);
                     fy_lo         = std::min(fy_lo, x[1]);
@@ -156,7 +160,7 @@ namespace squeal
                 double lo = 1e300, hi = -1e300;
                 for (const auto v : face->vertex_indices())
                   {
-                    const double p = pressure_at(face->vertex(v));
+                    const double p = pressure_at(pair.to_plane(face->vertex(v)));
                     lo             = std::min(lo, p);
                     hi             = std::max(hi, p);
                   }
@@ -185,28 +189,30 @@ namespace squeal
             sorted.push_back(indicator[c]);
         std::sort(sorted.begin(), sorted.end(), std::greater<float>());
         const float threshold = n_refine > 0 ? sorted[n_refine - 1] : 1e30f;
-        std::array<unsigned int, 3> by_body{};
+        std::map<std::string, unsigned int> by_body;
+        unsigned int n_refined = 0;
         for (const auto &cell : model.triangulation.active_cell_iterators())
           {
             const unsigned int c = cell->active_cell_index();
             if (!on_contact[c])
               continue;
             const bool refined = indicator[c] >= threshold && indicator[c] > 0.f;
+            const std::string &body = model.scene->body(cell->material_id()).name;
             if (refined)
-              ++by_body[std::min<unsigned int>(cell->material_id(), 2)];
-            csv << cycle << ','
-                << (cell->material_id() == geometry::material::pad ? "pad" :
-                                                                      "disc")
-                << ',' << cell->center()[0] << ',' << cell->center()[1] << ','
+              {
+                ++by_body[body];
+                ++n_refined;
+              }
+            csv << cycle << ',' << body << ',' << cell->center()[0] << ',' << cell->center()[1] << ','
                 << cell->center()[2] << ',' << indicator[c] << ',' << refined
                 << '\n';
           }
-        const unsigned int n_refined = by_body[0] + by_body[1] + by_body[2];
+        std::string split;
+        for (const auto &[body, count] : by_body)
+          split += (split.empty() ? "" : ", ") + std::to_string(count) + " " + body;
         pcout << "Contact refinement cycle " << cycle << ": " << n_refined
-              << " of " << n_contact << " contact cells refined ("
-              << by_body[geometry::material::pad] << " pad, "
-              << by_body[geometry::material::disc]
-              << " disc), pressure variation across a face: largest "
+              << " of " << n_contact << " contact cells refined (" << split
+              << "), pressure variation across a face: largest "
               << std::setprecision(3) << 1e-6 * sorted.front()
               << " MPa, refined down to " << 1e-6 * threshold << " MPa"
               << std::setprecision(6) << std::endl;
@@ -1396,33 +1402,42 @@ namespace squeal
       // against the in-plane motion.
       std::string
       disc_mode_name(const physics::StructuralModel &model,
+                     const scene::Body &             disc,
                      const physics::PETScVector &    re,
                      const physics::PETScVector &    im)
       {
-        const auto &g = model.prm.geometry;
-        // (r, theta, uz_re, uz_im, |u_inplane|^2) at owned top-face vertices
+        // (r, theta, u_axial_re, u_axial_im, |u_inplane|^2) at the owned
+        // vertices of the disc's naming face, in the disc's frame
         std::vector<std::array<double, 5>> local;
         for (const auto &cell : model.dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned() &&
-              cell->material_id() == geometry::material::disc)
+          if (cell->is_locally_owned() && cell->material_id() == disc.id)
             for (const auto f : cell->face_indices())
               if (cell->face(f)->at_boundary() &&
-                  cell->face(f)->boundary_id() == geometry::boundary::disc_contact)
+                  cell->face(f)->boundary_id() == disc.naming_face)
                 for (const auto v : cell->face(f)->vertex_indices())
                   {
                     const Point<3> x = cell->face(f)->vertex(v);
-                    const auto     z = cell->face(f)->vertex_dof_index(v, 2);
-                    if (!model.locally_owned_dofs.is_element(z))
-                      continue;
-                    double inplane = 0;
-                    for (unsigned int c = 0; c < 2; ++c)
+                    std::array<types::global_dof_index, 3> d;
+                    bool                                   owned = true;
+                    for (unsigned int c = 0; c < 3; ++c)
                       {
-                        const auto i = cell->face(f)->vertex_dof_index(v, c);
-                        inplane += re(i) * re(i) + im(i) * im(i);
+                        d[c]  = cell->face(f)->vertex_dof_index(v, c);
+                        owned = owned && model.locally_owned_dofs.is_element(d[c]);
                       }
-                    local.push_back({{std::hypot(x[0], x[1]),
-                                     std::atan2(x[1], x[0]), re(z), im(z),
-                                     inplane}});
+                    if (!owned)
+                      continue;
+                    Tensor<1, 3> u_re, u_im;
+                    for (unsigned int c = 0; c < 3; ++c)
+                      {
+                        u_re[c] = re(d[c]);
+                        u_im[c] = im(d[c]);
+                      }
+                    const double a_re = u_re * disc.axis, a_im = u_im * disc.axis;
+                    const double inplane =
+                      (u_re - a_re * disc.axis).norm_square() +
+                      (u_im - a_im * disc.axis).norm_square();
+                    const auto [r, theta] = disc.polar(x);
+                    local.push_back({{r, theta, a_re, a_im, inplane}});
                   }
         std::vector<std::array<double, 5>> all;
         for (const auto &part : Utilities::MPI::all_gather(model.comm, local))
@@ -1438,10 +1453,10 @@ namespace squeal
         if (axial < 0.25 * inplane)
           return "in-plane";
         // rim: the vertices at the outer radius
-        const double tol = 1e-6 * g.disc_outer_radius;
+        const double tol = 1e-6 * disc.outer_radius;
         std::vector<std::array<double, 5>> rim;
         for (const auto &a : all)
-          if (std::abs(a[0] - g.disc_outer_radius) < tol)
+          if (std::abs(a[0] - disc.outer_radius) < tol)
             rim.push_back(a);
         unsigned int best_n = 0;
         double       best   = -1;
@@ -1590,7 +1605,10 @@ namespace squeal
       // Kinetic-energy fraction of each body in each written mode, to name
       // modes (disc, pad, support) and to calibrate the support.
       std::ostringstream participation;
-      participation << "point,mode,freq_Hz,re_per_s,disc,pad,support,name\n"
+      participation << "point,mode,freq_Hz,re_per_s";
+      for (const scene::Body &b : model->scene->bodies)
+        participation << ',' << b.name;
+      participation << ",name\n"
                     << std::setprecision(8);
 
       std::vector<std::pair<double, std::string>> records;
@@ -1610,19 +1628,37 @@ namespace squeal
           {
             // kinetic-energy shares with the whole mass of the point (every
             // body at its density)
-            std::vector<double> e =
+            const std::vector<double> e =
               physics::kinetic_energy_by_body(*model, pt.values, re, im);
-            e.resize(std::max<std::size_t>(e.size(), 3), 0.);
-            const double total = e[0] + e[1] + e[2];
+            const auto &bodies = model->scene->bodies;
+            const auto  share  = [&](const scene::Body &b) {
+              return b.id < e.size() ? e[b.id] : 0.;
+            };
+            double total = 0.;
+            for (const scene::Body &b : bodies)
+              total += share(b);
             participation << p << ',' << k << ','
                           << pt.lambda[k].imag() / (2 * M_PI) << ','
-                          << pt.lambda[k].real() << ',' << e[0] / total << ','
-                          << e[1] / total << ',' << e[2] / total << ','
-                          << '"'
-                          << (e[0] > 0.5 * total ?
-                                disc_mode_name(*model, re, im) :
-                                (e[1] > e[2] ? "pad" : "support"))
-                          << "\"\n";
+                          << pt.lambda[k].real();
+            for (const scene::Body &b : bodies)
+              participation << ',' << share(b) / total;
+            // a disc carrying more than half the energy names the mode
+            // (s,n+-); otherwise the body carrying most besides the disc
+            const scene::Body *disc = model->scene->disc();
+            std::string        mode_name;
+            if (disc != nullptr && share(*disc) > 0.5 * total)
+              mode_name = disc_mode_name(*model, *disc, re, im);
+            else
+              {
+                double most = -1.;
+                for (const scene::Body &b : bodies)
+                  if (&b != disc && share(b) > most)
+                    {
+                      most      = share(b);
+                      mode_name = b.name;
+                    }
+              }
+            participation << ",\"" << mode_name << "\"\n";
           }
           std::ostringstream name;
           name << "mode_p" << p << "_m" << k << "_" << std::fixed

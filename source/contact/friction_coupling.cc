@@ -1,6 +1,7 @@
 // Segment-based (mortar) integration of the linear friction interface. Both
-// contact faces lie in the plane z = 0, so the projection onto the slave
-// (pad) face plane is the identity on (x, y): each pad face is clipped against
+// contact faces lie in the slave (pad) face's plane, and every face is seen
+// in that plane's coordinates (scene::ContactPair::to_plane): each pad face
+// is clipped against
 // the disc faces it overlaps, every overlap polygon is cut into a fan of
 // triangles, and a Gauss rule on each triangle gives points whose reference
 // coordinates are found in both cells. Exact integration over the overlap is
@@ -14,7 +15,6 @@
 
 #include <squeal/contact/friction_coupling.h>
 #include <squeal/contact/polygon.h>
-#include <squeal/geometry/tribobrake_mesh.h>
 
 #include <array>
 #include <cmath>
@@ -42,7 +42,7 @@ namespace squeal
         hanging_points(line->child(1), out);
       }
 
-      // The (x, y) outline of a face at z = 0, counter-clockwise. With
+      // The outline of a face in the pair's plane, counter-clockwise. With
       // @p follow_hanging, the vertices that refined neighbours hang on its
       // edges are included: on the curved disc face a coarse face's chord
       // and its refined neighbours' chords would otherwise leave slivers
@@ -51,6 +51,7 @@ namespace squeal
       // centroid but not always convex (see fan()).
       Polygon
       face_outline(const typename DoFHandler<3>::face_iterator &face,
+                   const scene::ContactPair                    &pair,
                    const bool                                  follow_hanging)
       {
         // deal.II numbers quadrilateral vertices lexicographically; the
@@ -62,7 +63,7 @@ namespace squeal
         Polygon p;
         for (unsigned int e = 0; e < 4; ++e)
           {
-            p.emplace_back(face->vertex(start[e])[0], face->vertex(start[e])[1]);
+            p.push_back(pair.to_plane(face->vertex(start[e])));
             if (!follow_hanging)
               continue;
             std::vector<Point<3>> between;
@@ -70,7 +71,7 @@ namespace squeal
             if (!edges[e].second)
               std::reverse(between.begin(), between.end());
             for (const auto &x : between)
-              p.emplace_back(x[0], x[1]);
+              p.push_back(pair.to_plane(x));
           }
         return counter_clockwise(p);
       }
@@ -101,10 +102,11 @@ namespace squeal
       };
 
       std::vector<FaceRef>
-      contact_faces(const DoFHandler<3> &dof_handler,
-                    const types::boundary_id id,
-                    const bool only_owned,
-                    const bool follow_hanging)
+      contact_faces(const DoFHandler<3>      &dof_handler,
+                    const types::boundary_id  id,
+                    const scene::ContactPair &pair,
+                    const bool                only_owned,
+                    const bool                follow_hanging)
       {
         std::vector<FaceRef> faces;
         for (const auto &cell : dof_handler.active_cell_iterators())
@@ -113,7 +115,9 @@ namespace squeal
               if (cell->face(f)->at_boundary() &&
                   cell->face(f)->boundary_id() == id)
                 {
-                  FaceRef r{cell, f, face_outline(cell->face(f), follow_hanging), {}};
+                  FaceRef r{cell, f,
+                            face_outline(cell->face(f), pair, follow_hanging),
+                            {}};
                   std::vector<Point<2>> pts(r.outline.begin(), r.outline.end());
                   r.box = BoundingBox<2>(pts);
                   faces.push_back(r);
@@ -150,15 +154,16 @@ namespace squeal
     } // namespace
 
     std::vector<CouplingPoint>
-    interface_quadrature(const DoFHandler<3> &dof_handler,
-                         const Mapping<3> &   mapping,
-                         const std::string &  rule,
-                         const unsigned int   n_points)
+    interface_quadrature(const DoFHandler<3>      &dof_handler,
+                         const Mapping<3>         &mapping,
+                         const scene::ContactPair &pair,
+                         const std::string        &rule,
+                         const unsigned int        n_points)
     {
       const auto pad_faces =
-        contact_faces(dof_handler, geometry::boundary::pad_contact, true, false);
+        contact_faces(dof_handler, pair.slave, pair, true, false);
       const auto disc_faces =
-        contact_faces(dof_handler, geometry::boundary::disc_contact, false, true);
+        contact_faces(dof_handler, pair.master, pair, false, true);
 
       std::vector<CouplingPoint> points;
       double                     covered = 0, pad_area = 0;
@@ -181,7 +186,7 @@ namespace squeal
                   Assert(on_pad, ExcInternalError());
                   (void)on_pad;
                   for (const auto &df : disc_faces)
-                    if (df.box.point_inside(Point<2>(x[0], x[1]), 1e-9) &&
+                    if (df.box.point_inside(pair.to_plane(x), 1e-9) &&
                         to_unit(mapping, df.cell, x, du))
                       {
                         points.push_back({pf.cell, df.cell, pu, du, fv.JxW(k)});
@@ -210,7 +215,7 @@ namespace squeal
                 continue;
               for (const auto &[x2, w] : polygon_quadrature(overlap, tri))
                 {
-                  const Point<3> x(x2[0], x2[1], 0.);
+                  const Point<3> x = pair.from_plane(x2);
                   Point<3>       pu, du;
                   // The straight-sided outline can stray outside a
                   // curved disc cell by a sliver; the point then still
@@ -225,9 +230,11 @@ namespace squeal
         }
       if (!pad_faces.empty() && covered < (1 - 1e-6) * pad_area)
         throw std::runtime_error(
-          "friction interface: only " +
+          "contact pair '" + pair.name + "': only " +
           std::to_string(100 * covered / pad_area) +
-          " % of the pad face lies over the disc; check Geometry/Pad radius");
+          " % of the slave face lies over the master face; check that the "
+          "two face sets face each other (Geometry/Pad radius for the "
+          "TriboBrake)");
       return points;
     }
 
@@ -257,7 +264,7 @@ namespace squeal
     assemble_interface(const std::vector<CouplingPoint> &  points,
                        const AffineConstraints<double> &   constraints,
                        const double                        k,
-                       const Tensor<1, 3> &                tangent,
+                       const scene::ContactPair &          pair,
                        PETScWrappers::MPI::SparseMatrix &  K_n,
                        PETScWrappers::MPI::SparseMatrix &  K_t)
     {
@@ -265,6 +272,8 @@ namespace squeal
       // pair's local matrices and distribute them once.
       if (points.empty())
         return;
+      const Tensor<1, 3> &tangent = pair.sliding;
+      const Tensor<1, 3> &normal  = pair.normal;
       const auto &       fe = points[0].pad_cell->get_fe();
       const unsigned int n  = fe.n_dofs_per_cell();
       FullMatrix<double> local_n(2 * n, 2 * n), local_t(2 * n, 2 * n);
@@ -285,7 +294,7 @@ namespace squeal
       for (unsigned int q = 0; q < points.size(); ++q)
         {
           const CouplingPoint &p = points[q];
-          // g: gap u_z(disc) - u_z(pad); f: friction force pattern, -t on
+          // g: gap (u(disc) - u(pad)) . n; f: friction force pattern, -t on
           // the pad rows (internal force of the traction +mu p t on the pad)
           // and +t on the disc rows.
           for (unsigned int i = 0; i < n; ++i)
@@ -293,8 +302,8 @@ namespace squeal
               const unsigned int c  = fe.system_to_component_index(i).first;
               const double       vp = fe.shape_value(i, p.pad_unit);
               const double       vd = fe.shape_value(i, p.disc_unit);
-              g[i]     = (c == 2) ? -vp : 0.;
-              g[n + i] = (c == 2) ? vd : 0.;
+              g[i]     = -normal[c] * vp;
+              g[n + i] = normal[c] * vd;
               f[i]     = -tangent[c] * vp;
               f[n + i] = tangent[c] * vd;
             }

@@ -12,7 +12,6 @@
 #include <deal.II/numerics/data_out_faces.h>
 
 #include <squeal/contact/preload.h>
-#include <squeal/geometry/tribobrake_mesh.h>
 #include <squeal/output/face_output.h>
 #include <squeal/output/output_directory.h>
 
@@ -28,11 +27,22 @@ namespace squeal
     using namespace dealii;
     namespace fs = std::filesystem;
 
+    const scene::ContactPair &
+    single_pair(const scene::Scene &scene)
+    {
+      if (scene.contact_pairs.size() != 1)
+        throw std::runtime_error(
+          "scene " + scene.description() + ": the preload and the braking "
+          "run handle exactly one contact pair; the scene has " +
+          std::to_string(scene.contact_pairs.size()));
+      return scene.contact_pairs.front();
+    }
+
     std::pair<types::global_dof_index, Point<3>>
-    tribobrake_contact_system(const physics::StructuralModel &model,
-                              SparsityPattern                &pattern,
-                              SparseMatrix<double>           &stiffness,
-                              AffineConstraints<double>      &constraints)
+    contact_system(const physics::StructuralModel &model,
+                   SparsityPattern                &pattern,
+                   SparseMatrix<double>           &stiffness,
+                   AffineConstraints<double>      &constraints)
     {
       const auto &prm = model.prm;
       // K_s at the nominal point, as a deal.II matrix.
@@ -40,33 +50,30 @@ namespace squeal
       physics::PETScMatrix       K;
       parts.combine(parts.coefficients(prm.nominal_point()).structural, K);
       physics::copy_to_serial(K, pattern, stiffness);
-      const unsigned int n = model.n_dofs();
 
       constraints.copy_from(model.constraints);
-      // Hold the radial displacement of the support top's centre node: a
-      // sliding contact does not hold the support along the radius.
-      const auto  &g = prm.geometry;
-      const Point<3> centre(g.pad_radius, 0., g.pad_size + g.support_length);
+      // The scene's point holds: one component of the node nearest each
+      // point (the TriboBrake's loading arm holds the support top's centre
+      // along the radius: a sliding contact does not hold it there).
       std::map<types::global_dof_index, Point<3>> support_points;
       DoFTools::map_dofs_to_support_points(model.mapping, model.dof_handler,
                                            support_points);
+      const std::vector<unsigned int> component =
+        physics::dof_support_points(model).second;
       types::global_dof_index held = numbers::invalid_dof_index;
-      std::vector<bool>       is_x(n, false);
-      {
-        const ComponentMask x_only({true, false, false});
-        const IndexSet      xs = DoFTools::extract_dofs(model.dof_handler, x_only);
-        for (const auto d : xs)
-          is_x[d] = true;
-      }
-      double best = 1e300;
-      for (const auto &[d, x] : support_points)
-        if (is_x[d] && x.distance(centre) < best)
-          {
-            best = x.distance(centre);
-            held = d;
-          }
-      if (!constraints.is_constrained(held))
+      for (const scene::PointHold &hold : model.scene->point_holds)
         {
+          double best = 1e300;
+          for (const auto &[d, x] : support_points)
+            if (component[d] == hold.component &&
+                x.distance(hold.point) < best)
+              {
+                best = x.distance(hold.point);
+                held = d;
+              }
+          if (held == numbers::invalid_dof_index ||
+              constraints.is_constrained(held))
+            continue;
           constraints.add_line(held);
           const double diag = stiffness.diag_element(held);
           for (auto e = stiffness.begin(held); e != stiffness.end(held); ++e)
@@ -78,11 +85,12 @@ namespace squeal
           stiffness.set(held, held, diag);
         }
       constraints.close();
-      return {held, support_points[held]};
+      return {held, held == numbers::invalid_dof_index ? Point<3>() :
+                                                          support_points[held]};
     }
 
     Point<3>
-    tribobrake_contact_system(const physics::StructuralModel &model,
+    contact_system(const physics::StructuralModel &model,
                               physics::PETScMatrix           &stiffness,
                               AffineConstraints<double>      &constraints,
                               MPI_Comm                        comm)
@@ -98,23 +106,27 @@ namespace squeal
       const auto [points, component] = physics::dof_support_points(model);
       constraints.clear();
       DoFTools::make_hanging_node_constraints(model.dof_handler, constraints);
-      const std::vector<bool> clamped =
-        physics::dofs_on_boundary(model, geometry::boundary::clamped);
-      for (types::global_dof_index i = 0; i < n; ++i)
-        if (clamped[i] && !constraints.is_constrained(i))
-          constraints.add_line(i);
-      const auto    &g = prm.geometry;
-      const Point<3> centre(g.pad_radius, 0., g.pad_size + g.support_length);
-      types::global_dof_index held = 0;
-      double                  best = 1e300;
-      for (types::global_dof_index d = 0; d < n; ++d)
-        if (component[d] == 0 && points[d].distance(centre) < best)
-          {
-            best = points[d].distance(centre);
-            held = d;
-          }
-      if (!constraints.is_constrained(held))
+      for (const scene::Hold &hold : model.scene->holds)
         {
+          const std::vector<bool> on = physics::dofs_on_boundary(model, hold.id);
+          for (types::global_dof_index i = 0; i < n; ++i)
+            if (on[i] && hold.components[component[i]] &&
+                !constraints.is_constrained(i))
+              constraints.add_line(i);
+        }
+      types::global_dof_index held = 0;
+      for (const scene::PointHold &hold : model.scene->point_holds)
+        {
+          double best = 1e300;
+          for (types::global_dof_index d = 0; d < n; ++d)
+            if (component[d] == hold.component &&
+                points[d].distance(hold.point) < best)
+              {
+                best = points[d].distance(hold.point);
+                held = d;
+              }
+          if (constraints.is_constrained(held))
+            continue;
           constraints.add_line(held);
           // its row: the diagonal alone (its column multiplies x_held = 0)
           const auto range = stiffness.local_range();
@@ -130,12 +142,18 @@ namespace squeal
     }
 
     Vector<double>
-    support_top_load(const physics::StructuralModel  &model,
-                     const AffineConstraints<double> &constraints,
-                     const double                     force)
+    scene_load(const physics::StructuralModel  &model,
+               const AffineConstraints<double> &constraints,
+               const double                     force)
     {
+      if (model.scene->loads.size() != 1)
+        throw std::runtime_error(
+          "scene " + model.scene->description() + ": the preload and the "
+          "braking run need exactly one load, the scene has " +
+          std::to_string(model.scene->loads.size()));
+      const scene::Load &applied = model.scene->loads.front();
       Vector<double> load;
-      // Uniform pressure on the support's top: Normal force / top area.
+      // Uniform traction on the load's faces: force / their area.
       const auto        &fe = model.fe;
       const QGauss<2>     q(fe.degree + 1);
       FEFaceValues<3>     fv(model.mapping, fe, q,
@@ -144,29 +162,33 @@ namespace squeal
       for (const auto &cell : model.dof_handler.active_cell_iterators())
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
-              cell->face(f)->boundary_id() == geometry::boundary::support_top)
+              cell->face(f)->boundary_id() == applied.id)
             {
               fv.reinit(cell, f);
               for (unsigned int k = 0; k < q.size(); ++k)
                 area += fv.JxW(k);
             }
       if (!(area > 0.))
-        throw std::runtime_error("the support has no top face to load");
-      const double traction = -force / area;
+        throw std::runtime_error("load '" + applied.name +
+                                 "': its face set has no faces");
+      const double traction = force / area;
       load.reinit(model.n_dofs());
       Vector<double>                       cell_f(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
       for (const auto &cell : model.dof_handler.active_cell_iterators())
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
-              cell->face(f)->boundary_id() == geometry::boundary::support_top)
+              cell->face(f)->boundary_id() == applied.id)
             {
               fv.reinit(cell, f);
               cell_f = 0.;
               for (unsigned int k = 0; k < q.size(); ++k)
                 for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-                  if (fe.system_to_component_index(i).first == 2)
-                    cell_f[i] += traction * fv.shape_value(i, k) * fv.JxW(k);
+                  if (const double t = applied.direction[
+                        fe.system_to_component_index(i).first];
+                      t != 0.)
+                    cell_f[i] += traction * t * fv.shape_value(i, k) *
+                                 fv.JxW(k);
               cell->get_dof_indices(dofs);
               constraints.distribute_local_to_global(cell_f, dofs, load);
             }
@@ -201,9 +223,8 @@ namespace squeal
 
       const Point<3> held =
         Utilities::MPI::n_mpi_processes(comm) == 1 ?
-          tribobrake_contact_system(model, pattern, stiffness, constraints)
-            .second :
-          tribobrake_contact_system(model, stiffness_mpi, constraints, comm);
+          contact_system(model, pattern, stiffness, constraints).second :
+          contact_system(model, stiffness_mpi, constraints, comm);
       pcout << "Preload: " << model.n_dofs()
             << " DoFs; radial displacement held at (" << held[0] << ", "
             << held[1] << ", " << held[2] << ") m" << std::endl;
@@ -213,16 +234,16 @@ namespace squeal
     PreloadAnalysis::assemble_load()
     {
       TimerOutput::Scope t(timer, "setup and assembly");
-      load = support_top_load(model, constraints, prm.preload.normal_force);
+      load = scene_load(model, constraints, prm.preload.normal_force);
     }
 
     void
     PreloadAnalysis::solve()
     {
       TimerOutput::Scope t(timer, "contact solve");
+      const scene::ContactPair &pair = single_pair(*model.scene);
       mortar = build_mortar_operators(model.dof_handler, model.mapping,
-                                      geometry::boundary::pad_contact,
-                                      geometry::boundary::disc_contact,
+                                      pair.slave, pair.master,
                                       prm.preload.search_distance);
       pcout << "Interface: " << mortar.n_slave() << " pad nodes, pad face "
             << mortar.slave_area * 1e6 << " mm^2, "
@@ -235,7 +256,7 @@ namespace squeal
                      FrictionModel::steady_sliding :
                      FrictionModel::frictionless;
       s.friction_coefficient = prm.interface.friction_coefficient;
-      s.sliding_direction    = prm.interface.sliding_tangent();
+      s.sliding_direction    = pair.sliding;
       s.master_slip          = prm.preload.disc_slip * s.sliding_direction;
       std::ostream *log = Utilities::MPI::this_mpi_process(comm) == 0 ?
                             &std::cout :
@@ -291,7 +312,7 @@ namespace squeal
         u[i] = state.displacement[i];
       u.compress(VectorOperation::insert);
       model.stiffness_springs.vmult(r, u);
-      const Tensor<1, 3> slide = prm.interface.sliding_tangent();
+      const Tensor<1, 3> slide = single_pair(*model.scene).sliding;
       const std::vector<unsigned int> component =
         physics::dof_support_points(model).second;
       spring_reaction = 0.;
@@ -325,7 +346,7 @@ namespace squeal
       const unsigned int n_s = mortar.n_slave();
       // The tangential traction as a nodal field too (the same L2
       // projection as the pressure), along and across the sliding direction.
-      const Tensor<1, 3> slide = prm.interface.sliding_tangent();
+      const Tensor<1, 3> slide = single_pair(*model.scene).sliding;
       Vector<double>     along(n_s), across_t(n_s);
       for (unsigned int j = 0; j < n_s; ++j)
         {
@@ -359,7 +380,7 @@ namespace squeal
           fields[mortar.slave_dofs[j][1]] = along[j];
           fields[mortar.slave_dofs[j][2]] = state.status[j];
         }
-      output::BoundaryFaceOutput out(geometry::boundary::pad_contact);
+      output::BoundaryFaceOutput out(single_pair(*model.scene).slave);
       out.attach_dof_handler(model.dof_handler);
       out.add_data_vector(fields,
                           std::vector<std::string>{"contact_pressure_Pa",

@@ -14,7 +14,6 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <squeal/contact/friction_coupling.h>
-#include <squeal/geometry/tribobrake_mesh.h>
 #include <squeal/physics/structural_model.h>
 
 #include <algorithm>
@@ -50,24 +49,6 @@ namespace squeal
       matrix.compress(VectorOperation::insert);
     }
 
-    const parameters::Material &
-    body_material(const parameters::Materials &m, const types::material_id id)
-    {
-      return id == geometry::material::disc ? m.disc :
-             id == geometry::material::pad  ? m.pad :
-                                              m.support;
-    }
-
-    double
-    body_density(const parameters::AllParameters &prm,
-                 const types::material_id         id,
-                 const parameters::ScalarPoint   &p)
-    {
-      return id == geometry::material::support ?
-               p.support_density :
-               body_material(prm.materials, id).density;
-    }
-
     std::vector<double>
     kinetic_energy_by_body(const StructuralModel         &model,
                            const parameters::ScalarPoint &p,
@@ -95,7 +76,7 @@ namespace squeal
               {
                 fe_values.reinit(cell);
                 fe_values.get_function_values(ghosted, values);
-                const double rho = body_density(model.prm, cell->material_id(), p);
+                const double rho = model.scene->density(cell->material_id(), p);
                 for (unsigned int q = 0; q < quadrature.size(); ++q)
                   energy[cell->material_id()] +=
                     rho * (values[q] * values[q]) * fe_values.JxW(q);
@@ -164,9 +145,8 @@ namespace squeal
     void
     StructuralModel::setup_and_assemble(ConditionalOStream &pcout)
     {
-      geometry::make_tribobrake_mesh(prm.geometry, prm.mesh,
-                                     prm.scene.bodies == "tribobrake",
-                                     triangulation);
+      scene = scene::make_scene(prm);
+      scene->make_mesh(triangulation);
       setup_dofs_and_assemble(pcout);
     }
 
@@ -261,7 +241,6 @@ namespace squeal
     void
     StructuralModel::setup_dofs_and_assemble(ConditionalOStream &pcout)
     {
-      const bool brake = prm.scene.bodies == "tribobrake";
       dof_handler.distribute_dofs(fe);
       locally_owned_dofs = dof_handler.locally_owned_dofs();
       DoFTools::extract_locally_relevant_dofs(dof_handler,
@@ -270,18 +249,22 @@ namespace squeal
       constraints.clear();
       constraints.reinit(locally_relevant_dofs);
       DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-      VectorTools::interpolate_boundary_values(mapping, dof_handler,
-                                               geometry::boundary::clamped,
-                                               Functions::ZeroFunction<3>(3),
-                                               constraints);
+      for (const scene::Hold &hold : scene->holds)
+        VectorTools::interpolate_boundary_values(
+          mapping, dof_handler, hold.id, Functions::ZeroFunction<3>(3),
+          constraints,
+          ComponentMask(std::vector<bool>(hold.components.begin(),
+                                          hold.components.end())));
       constraints.close();
 
-      std::vector<contact::CouplingPoint> interface_points;
-      if (brake)
-        interface_points = contact::interface_quadrature(
-          dof_handler, mapping, prm.interface.quadrature,
+      // one list per contact pair
+      std::vector<std::vector<contact::CouplingPoint>> pair_points;
+      for (const scene::ContactPair &pair : scene->contact_pairs)
+        pair_points.push_back(contact::interface_quadrature(
+          dof_handler, mapping, pair, prm.interface.quadrature,
           prm.interface.quadrature == "nodal" ? prm.mesh.fe_degree + 1 :
-                                                prm.mesh.fe_degree + 2);
+                                                prm.mesh.fe_degree + 2));
+      for (auto &interface_points : pair_points)
       if (interface_mask)
         {
           std::vector<contact::CouplingPoint> kept;
@@ -301,7 +284,8 @@ namespace squeal
 
       DynamicSparsityPattern dsp(locally_relevant_dofs);
       DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
-      contact::add_interface_sparsity(interface_points, constraints, dsp);
+      for (const auto &interface_points : pair_points)
+        contact::add_interface_sparsity(interface_points, constraints, dsp);
       SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs,
                                                  comm, locally_relevant_dofs);
       for (auto *m : {&mass, &mass_support, &stiffness_rest, &stiffness_pad,
@@ -322,16 +306,15 @@ namespace squeal
         if (*v == 0.)
           *v = 1.;
       assemble_elasticity();
-      if (brake)
-        {
-          add_springs(pcout);
-          contact::assemble_interface(interface_points, constraints,
-                                      reference.interface_stiffness,
-                                      prm.interface.sliding_tangent(),
-                                      interface_normal, interface_friction);
-          interface_normal.compress(VectorOperation::add);
-          interface_friction.compress(VectorOperation::add);
-        }
+      for (const scene::SpringSet &springs : scene->springs)
+        add_springs(springs, pcout);
+      for (unsigned int i = 0; i < pair_points.size(); ++i)
+        contact::assemble_interface(pair_points[i], constraints,
+                                    reference.interface_stiffness,
+                                    scene->contact_pairs[i],
+                                    interface_normal, interface_friction);
+      interface_normal.compress(VectorOperation::add);
+      interface_friction.compress(VectorOperation::add);
 
       // Constrained rows: K_ii = d, M_ii = d / omega_s^2, all parts else 0;
       // d from the disc and support elasticity alone, so that it does not
@@ -401,19 +384,15 @@ namespace squeal
       FullMatrix<double> cell_k(n, n), cell_m(n, n);
       std::vector<types::global_dof_index> dofs(n);
 
-      const auto &mat = prm.materials;
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            const parameters::Material &m =
-              body_material(mat, cell->material_id());
-            const bool   is_pad = cell->material_id() == geometry::material::pad;
-            const bool   is_support =
-              cell->material_id() == geometry::material::support;
-            const double E = is_pad ? reference.E_pad : m.youngs_modulus;
-            const double nu = m.poisson_ratio;
-            const double density =
-              body_density(prm, cell->material_id(), reference);
+            const scene::Body &body = scene->body(cell->material_id());
+            const bool   is_pad     = body.modulus_swept;
+            const bool   is_support = body.density_swept;
+            const double E  = scene->youngs_modulus(body.id, reference);
+            const double nu = body.material.poisson_ratio;
+            const double density = scene->density(body.id, reference);
             const auto [lambda, mu] = lame_constants(E, nu);
 
             fe_values.reinit(cell);
@@ -431,42 +410,43 @@ namespace squeal
     }
 
     void
-    StructuralModel::add_springs(ConditionalOStream &pcout)
+    StructuralModel::add_springs(const scene::SpringSet &s,
+                                 ConditionalOStream     &pcout)
     {
-      const auto &g = prm.geometry;
-      const auto &s = prm.springs;
-      if (s.n_rows_per_side == 0)
+      const std::vector<Point<3>> &stations = s.stations;
+      if (stations.empty())
         return;
-      // Spring stations: on the two support faces y = +-pad_size/2, rows at
-      // x = the centres of n_rows equal strips of the face width, and along
-      // the support at evenly spaced heights, both ends included.
-      std::vector<Point<3>> stations;
-      for (const double y : {-g.pad_size / 2, g.pad_size / 2})
-        for (unsigned int r = 0; r < s.n_rows_per_side; ++r)
-          for (unsigned int k = 0; k < s.n_per_row; ++k)
-            stations.emplace_back(g.pad_radius - g.pad_size / 2 +
-                                    g.pad_size * (r + 0.5) / s.n_rows_per_side,
-                                    y,
-                                    g.pad_size +
-                                      (s.n_per_row == 1 ?
-                                         g.support_length / 2 :
-                                         g.support_length * k / (s.n_per_row - 1)));
+      if (s.station_normals.size() != stations.size())
+        throw std::runtime_error("springs '" + s.name +
+                                 "': one face normal per station needed");
+      // the components the springs act along (for the point springs: one)
+      std::vector<unsigned int> acting;
+      for (unsigned int c = 0; c < 3; ++c)
+        if (s.direction[c] != 0.)
+          acting.push_back(c);
 
-      // Each spring spread over the disc of the support face within the
+      // Each spring spread over the disc of the body's face within the
       // attachment radius of its station, with cosine-bell weights
       // normalised to the spring's stiffness: a Winkler layer of stiffness
-      // density k bell(x) / int(bell) [N/m^3] in the sliding direction.
+      // density k bell(x) / int(bell) [N/m^3] along the spring's direction.
       // Consistent (default): integrated exactly enough by composite Gauss
       // rules of sub-intervals a / 6 on every face the bell touches, so the
       // model is the same on every mesh and degree and a finer space can
       // only lower its frequencies. Lumped (explicit dynamics): the
       // Gauss-Lobatto rule on the face's FE_Q support points, a diagonal
       // that changes with the node spacing.
-      const double a = s.attachment_radius;
-      const auto   bell = [&](const Point<3> &x, const Point<3> &station) {
-        if (std::abs(x[1] - station[1]) > 1e-6 * g.pad_size)
+      const double a = s.radius;
+      // distance of x from station i's plane, and within that plane
+      const auto off_plane = [&](const Point<3> &x, const unsigned int i) {
+        return std::abs((x - stations[i]) * s.station_normals[i]);
+      };
+      const auto bell = [&](const Point<3> &x, const unsigned int i) {
+        if (off_plane(x, i) > s.tolerance)
           return 0.;
-        const double r = std::hypot(x[0] - station[0], x[2] - station[2]);
+        const Tensor<1, 3> d = x - stations[i];
+        const Tensor<1, 3> v = d - (d * s.station_normals[i]) * s.station_normals[i];
+        // |v| by hypot (no overflow; exact when a component is 0)
+        const double r = std::hypot(std::hypot(v[0], v[1]), v[2]);
         return r < a ? 0.5 * (1. + std::cos(numbers::PI * r / a)) : 0.;
       };
       const unsigned int n = fe.n_dofs_per_cell();
@@ -474,17 +454,20 @@ namespace squeal
       std::vector<types::global_dof_index> dofs(n);
       std::vector<double>       total(stations.size(), 0.);
       std::vector<unsigned int> faces_per_spring(stations.size(), 0);
+      // a boundary face of the body on some station's plane
       const auto on_side_face = [&](const auto &cell, const unsigned int f) {
-        return cell->is_locally_owned() &&
-               cell->material_id() == geometry::material::support &&
-               cell->face(f)->at_boundary() &&
-               std::abs(std::abs(cell->face(f)->center()[1]) -
-                        g.pad_size / 2) < 1e-6 * g.pad_size;
+        if (!cell->is_locally_owned() || cell->material_id() != s.body ||
+            !cell->face(f)->at_boundary())
+          return false;
+        for (unsigned int i = 0; i < stations.size(); ++i)
+          if (off_plane(cell->face(f)->center(), i) < s.tolerance)
+            return true;
+        return false;
       };
-      // One record per support side face the bells touch: the quadrature
-      // points some bell covers, in the cell's unit coordinates, each with
-      // its (spring, bell x JxW [m^2]) pairs, and the y-component shape
-      // functions nonzero on the face.
+      // One record per face the bells touch: the quadrature points some
+      // bell covers, in the cell's unit coordinates, each with its (spring,
+      // bell x JxW [m^2]) pairs, and the shape functions of the acting
+      // components nonzero on the face.
       struct FaceRule
       {
         DoFHandler<3>::active_cell_iterator                           cell;
@@ -502,19 +485,21 @@ namespace squeal
                 const auto   face = cell->face(f);
                 const double h    = face->diameter();
                 bool         near = false;
-                for (const auto &station : stations)
-                  near = near || (std::abs(face->center()[1] - station[1]) <
-                                    1e-6 * g.pad_size &&
-                                  face->center().distance(station) < a + h / 2);
+                for (unsigned int i = 0; i < stations.size(); ++i)
+                  near = near || (off_plane(face->center(), i) < s.tolerance &&
+                                  face->center().distance(stations[i]) <
+                                    a + h / 2);
                 if (!near)
                   continue;
                 // the face must be a parallelogram (weights = unit weights
                 // times its area)
                 const Tensor<1, 3> d = face->vertex(0) + face->vertex(3) -
                                    face->vertex(1) - face->vertex(2);
-                AssertThrow(d.norm() < 1e-9 * h,
-                            ExcMessage("a support side face is not a "
-                                       "parallelogram"));
+                if (!(d.norm() < 1e-9 * h))
+                  throw std::runtime_error(
+                    "springs '" + s.name + "': a face they spread over is "
+                    "not a parallelogram; set their attachment radius to 0 "
+                    "(point springs) or remesh the face");
                 const Quadrature<2> q2 =
                   lumped_springs ?
                     Quadrature<2>(QGaussLobatto<2>(fe.degree + 1)) :
@@ -533,7 +518,7 @@ namespace squeal
                       mapping.transform_unit_to_real_cell(cell, q3.point(q));
                     std::vector<std::pair<unsigned int, double>> w;
                     for (unsigned int i = 0; i < stations.size(); ++i)
-                      if (const double b = bell(x, stations[i]); b > 0.)
+                      if (const double b = bell(x, i); b > 0.)
                         {
                           w.emplace_back(i, b * q3.weight(q) * face->measure());
                           total[i] += w.back().second;
@@ -547,7 +532,7 @@ namespace squeal
                 for (unsigned int i = 0; i < stations.size(); ++i)
                   faces_per_spring[i] += touched[i];
                 for (unsigned int k = 0; k < n; ++k)
-                  if (fe.system_to_component_index(k).first == 1 &&
+                  if (s.direction[fe.system_to_component_index(k).first] != 0. &&
                       fe.has_support_on_face(k, f))
                     rule.shapes.push_back(k);
                 rules.push_back(std::move(rule));
@@ -567,8 +552,13 @@ namespace squeal
               for (const auto &[i, w] : rule.weights[q])
                 c += reference.spring_stiffness * w / total[i];
               for (unsigned int k = 0; k < phi.size(); ++k)
-                phi[k] = fe.shape_value_component(rule.shapes[k],
-                                                  rule.unit[q], 1);
+                {
+                  const unsigned int comp =
+                    fe.system_to_component_index(rule.shapes[k]).first;
+                  phi[k] = s.direction[comp] *
+                           fe.shape_value_component(rule.shapes[k],
+                                                    rule.unit[q], comp);
+                }
               for (unsigned int k = 0; k < phi.size(); ++k)
                 for (unsigned int l = 0; l < phi.size(); ++l)
                   cell_k(rule.shapes[k], rule.shapes[l]) += c * phi[k] * phi[l];
@@ -587,17 +577,21 @@ namespace squeal
       // same distance the lowest DoF index, the same on every rank.
       const bool any_point =
         std::find(total.begin(), total.end(), 0.) != total.end();
+      if (any_point && acting.size() != 1)
+        throw std::runtime_error(
+          "springs '" + s.name + "': a station has no face within the "
+          "attachment radius, and a spring at one node needs a direction "
+          "along a coordinate axis; give a radius that reaches the faces");
       const auto &unit = fe.get_unit_support_points();
       std::vector<double> best(stations.size(), 1e300);
       std::vector<types::global_dof_index> best_dof(
         stations.size(), std::numeric_limits<types::global_dof_index>::max());
       for (const auto &cell : dof_handler.active_cell_iterators())
-        if (any_point && !cell->is_artificial() &&
-            cell->material_id() == geometry::material::support)
+        if (any_point && !cell->is_artificial() && cell->material_id() == s.body)
           {
             cell->get_dof_indices(dofs);
             for (unsigned int k = 0; k < n; ++k)
-              if (fe.system_to_component_index(k).first == 1 &&
+              if (fe.system_to_component_index(k).first == acting[0] &&
                   !constraints.is_constrained(dofs[k])) // not hanging
                 {
                   const Point<3> x =
@@ -627,7 +621,10 @@ namespace squeal
               comm);
             worst = std::max(worst, d);
             if (locally_owned_dofs.is_element(dof))
-              stiffness_springs.add(dof, dof, reference.spring_stiffness);
+              stiffness_springs.add(dof, dof,
+                                    reference.spring_stiffness *
+                                      s.direction[acting[0]] *
+                                      s.direction[acting[0]]);
           }
       stiffness_springs.compress(VectorOperation::add);
       // faces per spread spring (a report, not an input)
@@ -641,7 +638,7 @@ namespace squeal
             n_max = std::max(n_max, counts[i]);
           }
       pcout << "Springs: " << stations.size() << " x " << s.stiffness
-            << " N/m in the sliding direction, ";
+            << " N/m along (" << s.direction << "), ";
       if (n_point == stations.size())
         pcout << "each at the nearest node";
       else

@@ -11,7 +11,6 @@
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <squeal/contact/preload.h>
-#include <squeal/geometry/tribobrake_mesh.h>
 #include <squeal/output/face_output.h>
 #include <squeal/output/output_directory.h>
 #include <squeal/transient/braking.h>
@@ -39,17 +38,17 @@ namespace squeal
       class VonMises : public DataPostprocessorScalar<3>
       {
       public:
-        explicit VonMises(const parameters::AllParameters &prm)
+        explicit VonMises(const scene::Scene &scene)
           : DataPostprocessorScalar<3>("von_mises_Pa", update_gradients)
-          , prm(prm)
+          , scene(scene)
         {}
         void
         evaluate_vector_field(
           const DataPostprocessorInputs::Vector<3> &in,
           std::vector<Vector<double>> &out) const override
         {
-          const parameters::Material &mat = physics::body_material(
-            prm.materials, in.template get_cell<3>()->material_id());
+          const parameters::Material &mat =
+            scene.body(in.template get_cell<3>()->material_id()).material;
           const auto [lambda, mu] =
             physics::lame_constants(mat.youngs_modulus, mat.poisson_ratio);
           for (unsigned int q = 0; q < out.size(); ++q)
@@ -67,7 +66,7 @@ namespace squeal
         }
 
       private:
-        const parameters::AllParameters &prm;
+        const scene::Scene &scene;
       };
 
       // Force ramp: (1 - cos(pi t / T)) / 2 up to T, then 1.
@@ -151,29 +150,35 @@ namespace squeal
       // the lumped mass and the mortar operators are built over all cells,
       // the same on every rank and independent of the DoF numbering.
       std::tie(points, component) = physics::dof_support_points(model);
-      fixed = physics::dofs_on_boundary(model, geometry::boundary::clamped);
-      const auto &g = prm.geometry;
-      const Point<3> centre(g.pad_radius, 0., g.pad_size + g.support_length);
-      types::global_dof_index held = 0;
-      {
-        // the x component at the nearest support point
-        double best = 1e300;
-        for (const auto &cell : model.dof_handler.active_cell_iterators())
-          for (const unsigned int v : cell->vertex_indices())
-            if (cell->vertex(v).distance(centre) < best)
-              {
-                best = cell->vertex(v).distance(centre);
-                held = cell->vertex_dof_index(v, 0);
-              }
-      }
-      fixed[held] = true;
-      const Point<3> held_point = points[held];
+      fixed.assign(n, false);
+      for (const scene::Hold &hold : model.scene->holds)
+        {
+          const std::vector<bool> on = physics::dofs_on_boundary(model, hold.id);
+          for (unsigned int i = 0; i < n; ++i)
+            fixed[i] = fixed[i] || (on[i] && hold.components[component[i]]);
+        }
+      Point<3> held_point;
+      for (const scene::PointHold &hold : model.scene->point_holds)
+        {
+          // the component at the nearest vertex
+          types::global_dof_index held = 0;
+          double best = 1e300;
+          for (const auto &cell : model.dof_handler.active_cell_iterators())
+            for (const unsigned int v : cell->vertex_indices())
+              if (cell->vertex(v).distance(hold.point) < best)
+                {
+                  best = cell->vertex(v).distance(hold.point);
+                  held = cell->vertex_dof_index(v, hold.component);
+                }
+          fixed[held] = true;
+          held_point  = points[held];
+        }
       if (serial)
         {
           // the assembled matrix with the same fixed DoFs (the preload's
           // contact system)
           AffineConstraints<double> contact_constraints;
-          const Point<3> p = contact::tribobrake_contact_system(
+          const Point<3> p = contact::contact_system(
                                model, pattern, stiffness, contact_constraints)
                                .second;
           for (unsigned int i = 0; i < n; ++i)
@@ -190,20 +195,17 @@ namespace squeal
           constraints.add_line(i);
       constraints.close();
 
-      const double rho_support = prm.nominal_point().support_density;
+      const parameters::ScalarPoint nominal = prm.nominal_point();
       mass = lumped_mass(model.dof_handler, model.mapping, [&](const auto &cell) {
-        return cell->material_id() == geometry::material::support ?
-                 rho_support :
-                 physics::body_material(prm.materials, cell->material_id())
-                   .density;
+        return model.scene->density(cell->material_id(), nominal);
       });
 
+      const scene::ContactPair &pair = contact::single_pair(*model.scene);
       mortar = contact::build_mortar_operators(model.dof_handler, model.mapping,
-                                               geometry::boundary::pad_contact,
-                                               geometry::boundary::disc_contact,
+                                               pair.slave, pair.master,
                                                prm.preload.search_distance);
-      sliding = prm.interface.sliding_tangent();
-      radial  = Tensor<1, 3>({1., 0., 0.}); // the pad sits on the +x axis
+      sliding = pair.sliding;
+      radial  = pair.radial();
 
       // The matrix-free product: elasticity per material plus the springs'
       // diagonal (each spring ties one DoF to the ground), on this rank's
@@ -222,12 +224,12 @@ namespace squeal
               throw std::runtime_error("the support's springs couple two DoFs: "
                                        "the matrix-free product needs them "
                                        "grounded");
-        const auto &mat = prm.materials;
         matrix_free     = std::make_unique<ElasticityOperator>(
           model.dof_handler, model.mapping, constraints,
-          [&mat](const types::material_id id) {
-            const parameters::Material &m = physics::body_material(mat, id);
-            return physics::lame_constants(m.youngs_modulus, m.poisson_ratio);
+          [this, nominal](const types::material_id id) {
+            return physics::lame_constants(
+              model.scene->youngs_modulus(id, nominal),
+              model.scene->body(id).material.poisson_ratio);
           },
           springs);
       }
@@ -317,8 +319,8 @@ namespace squeal
         prm.interface.rotation_sense == "counterclockwise" ?
           tr.angular_velocity :
           -tr.angular_velocity;
-      dynamics->set_contact(mortar, [omega](const Point<3> &x) {
-        return Tensor<1, 3>({-omega * x[1], omega * x[0], 0.});
+      dynamics->set_contact(mortar, [omega, pair](const Point<3> &x) {
+        return omega * cross_product_3d(pair.axis, x - pair.axis_point);
       });
       result.n_dofs             = n;
       result.time_step          = s.time_step;
@@ -330,7 +332,7 @@ namespace squeal
       double s_min = 1e300;
       for (unsigned int j = 0; j < mortar.n_slave(); ++j)
         s_min = std::min(s_min, mortar.slave_points[j] * sliding);
-      const double h = prm.geometry.pad_size * 1e-6;
+      const double h = pair.size * 1e-6;
       unsigned int best = 0;
       double       best_r = 1e300;
       for (unsigned int j = 0; j < mortar.n_slave(); ++j)
@@ -338,7 +340,7 @@ namespace squeal
           {
             leading_nodes.push_back(j);
             const double dr =
-              std::abs(mortar.slave_points[j] * radial - prm.geometry.pad_radius);
+              std::abs((mortar.slave_points[j] - pair.centre) * radial);
             if (dr < best_r)
               {
                 best_r = dr;
@@ -378,7 +380,7 @@ namespace squeal
     BrakingAnalysis::assemble_load()
     {
       TimerOutput::Scope t(timer, "setup");
-      load = contact::support_top_load(model, constraints,
+      load = contact::scene_load(model, constraints,
                                        prm.transient.normal_force);
     }
 
@@ -449,7 +451,7 @@ namespace squeal
                             DataOut<3>::type_dof_data, vec);
         out.add_data_vector(v, std::vector<std::string>(3, "velocity_m_per_s"),
                             DataOut<3>::type_dof_data, vec);
-        const VonMises von_mises(prm);
+        const VonMises von_mises(*model.scene);
         out.add_data_vector(u, von_mises);
         out.build_patches(model.mapping, 1);
         out.write_vtu_in_parallel((fs::path(work_dir) / "vtu" / name).string(),
@@ -471,7 +473,7 @@ namespace squeal
           state[dofs[0]]     = c.status[j];
           state[dofs[1]]     = c.slip_velocity[j];
         }
-      output::BoundaryFaceOutput face(geometry::boundary::pad_contact);
+      output::BoundaryFaceOutput face(contact::single_pair(*model.scene).slave);
       face.attach_dof_handler(model.dof_handler);
       face.add_data_vector(tractions,
                            std::vector<std::string>{"contact_pressure_Pa",
@@ -754,18 +756,32 @@ namespace squeal
       Vector<double> u0(model.n_dofs()), v0(model.n_dofs());
       if (tr.initial_perturbation > 0. && !resuming)
         {
-          // the seed: axial velocity in the shape of a (0,3) disc mode
-          const double r_i = prm.geometry.disc_inner_radius,
-                       r_o = prm.geometry.disc_outer_radius;
+          // the seed: axial velocity in the shape of a (0,3) mode of the
+          // scene's disc
+          const scene::Body *disc = model.scene->disc();
+          if (disc == nullptr)
+            throw std::runtime_error(
+              "Transient/Initial perturbation > 0 seeds a disc mode, and "
+              "scene " + model.scene->description() + " has no disc");
+          std::vector<bool> on_disc(model.n_dofs(), false);
+          std::vector<types::global_dof_index> dofs(model.fe.n_dofs_per_cell());
+          for (const auto &cell : model.dof_handler.active_cell_iterators())
+            if (cell->material_id() == disc->id)
+              {
+                cell->get_dof_indices(dofs);
+                for (const auto i : dofs)
+                  on_disc[i] = true;
+              }
+          const double r_i = disc->inner_radius, r_o = disc->outer_radius;
           for (unsigned int i = 0; i < model.n_dofs(); ++i)
-            {
-              const Point<3> &x = points[i];
-              const double    r = std::hypot(x[0], x[1]);
-              if (component[i] == 2 && x[2] <= 0. && !fixed[i])
-                v0[i] = tr.initial_perturbation *
-                        std::cos(3. * std::atan2(x[1], x[0])) * (r - r_i) /
-                        (r_o - r_i);
-            }
+            if (on_disc[i] && !fixed[i])
+              {
+                const auto [r, theta] = disc->polar(points[i]);
+                for (unsigned int c = 0; c < 3; ++c)
+                  if (c == component[i])
+                    v0[i] = tr.initial_perturbation * disc->axis[c] *
+                            std::cos(3. * theta) * (r - r_i) / (r_o - r_i);
+              }
         }
       d.initialise(u0, v0);
       unsigned int first_step = 0;

@@ -39,41 +39,52 @@ namespace squeal
   namespace contact
   {
     /**
-     * The TriboBrake's structural stiffness K_s at the file's nominal point
-     * (disc, pad, support, springs; no linear interface) as a serial matrix
-     * [N/m] on a new @p pattern, and its constraints: the model's (clamped
-     * disc) plus the radial (x) displacement of the node nearest the centre
-     * of the support's top, held at zero (the loading arm: a sliding contact
-     * does not hold the support along the radius).
-     * @return the held DoF and its position [m]
+     * The one contact pair of the model's scene.
+     * @throws std::runtime_error if the scene has none or several (the
+     * preload and the braking run handle one).
+     */
+    const scene::ContactPair &
+    single_pair(const scene::Scene &scene);
+
+    /**
+     * The scene's structural stiffness K_s at the file's nominal point
+     * (bodies and springs; no linear interface) as a serial matrix [N/m] on
+     * a new @p pattern, and its constraints: the model's (the scene's holds,
+     * hanging nodes) plus, for each of the scene's point holds, its
+     * component at the nearest node held at zero (the TriboBrake's loading
+     * arm: a sliding contact does not hold the support along the radius).
+     * @return the last held DoF and its position [m] (invalid index and the
+     * origin without point holds)
      */
     std::pair<dealii::types::global_dof_index, dealii::Point<3>>
-    tribobrake_contact_system(const physics::StructuralModel    &model,
+    contact_system(const physics::StructuralModel    &model,
                               dealii::SparsityPattern           &pattern,
                               dealii::SparseMatrix<double>      &stiffness,
                               dealii::AffineConstraints<double> &constraints);
 
     /**
      * The same system distributed over @p comm: @p stiffness the PETSc
-     * matrix of K_s (each rank its own rows; the held DoF's row reduced to
-     * its diagonal), @p constraints on all DoFs and identical on every rank
-     * (hanging nodes, the clamped faces, the radial hold), built from the
+     * matrix of K_s (each rank its own rows; the held DoFs' rows reduced to
+     * their diagonals), @p constraints on all DoFs and identical on every
+     * rank (hanging nodes, the holds, the point holds), built from the
      * whole parallel::shared mesh. Collective.
      * @return the held DoF's position [m]
      */
     dealii::Point<3>
-    tribobrake_contact_system(const physics::StructuralModel    &model,
+    contact_system(const physics::StructuralModel    &model,
                               physics::PETScMatrix              &stiffness,
                               dealii::AffineConstraints<double> &constraints,
                               MPI_Comm                           comm);
 
     /**
-     * The load vector [N] of @p force [N] spread uniformly over the support's
-     * top face, pushing the pad towards the disc (-z), with @p constraints.
-     * @throws std::runtime_error if the scene has no support top face.
+     * The load vector [N] of @p force [N] spread uniformly over the faces of
+     * the scene's load, along its direction (the TriboBrake: the support's
+     * top, pushing the pad towards the disc, -z), with @p constraints.
+     * @throws std::runtime_error if the scene has not exactly one load or
+     * its face set is empty.
      */
     dealii::Vector<double>
-    support_top_load(const physics::StructuralModel          &model,
+    scene_load(const physics::StructuralModel          &model,
                      const dealii::AffineConstraints<double> &constraints,
                      double                                   force);
 

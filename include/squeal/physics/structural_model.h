@@ -30,6 +30,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 
 #include <squeal/parameters/parameters.h>
+#include <squeal/scene/scene.h>
 
 #include <array>
 #include <functional>
@@ -42,14 +43,6 @@ namespace squeal
   {
     using PETScMatrix = dealii::PETScWrappers::MPI::SparseMatrix;
     using PETScVector = dealii::PETScWrappers::MPI::Vector;
-
-    /**
-     * The material of the body with material id @p id
-     * (geometry::material: disc, pad, else support) as set in the file.
-     */
-    const parameters::Material &
-    body_material(const parameters::Materials &materials,
-                  dealii::types::material_id   id);
 
     /** The Lame constants (lambda, mu) [Pa] of Young's modulus @p E [Pa]
      * and Poisson's ratio @p nu. */
@@ -153,8 +146,8 @@ namespace squeal
       StructuralModel(const parameters::AllParameters &prm, MPI_Comm comm);
 
       /**
-       * Builds the mesh, the DoFs, the constraints (clamped inner face,
-       * hanging nodes) and the common sparsity pattern of all matrix parts,
+       * Makes the scene, then builds its mesh, the DoFs, the constraints
+       * (the scene's holds, hanging nodes) and the common sparsity pattern of all matrix parts,
        * then assembles every part of MatrixParts at the nominal parameter
        * values of the file (a zero one is replaced by 1 in its unit).
        * Constrained rows get K_ii = d (the mean diagonal of K_rest over the
@@ -217,6 +210,11 @@ namespace squeal
       const parameters::AllParameters &prm;
       MPI_Comm                         comm;
 
+      /// The scene the model was built from (scene::make_scene() of the
+      /// parameters at setup_and_assemble(); null before): bodies, contact
+      /// pairs, holds, loads, springs.
+      std::unique_ptr<const scene::Scene> scene;
+
       /**
        * Optional weight of the linear friction interface at a point of the
        * pad face (m): each interface quadrature point's weight is
@@ -266,19 +264,13 @@ namespace squeal
       void setup_dofs_and_assemble(dealii::ConditionalOStream &pcout);
       void
       assemble_elasticity();
+      /// adds one spring set of the scene to stiffness_springs
+      /// @throws std::runtime_error if a face the springs spread over is
+      /// not a parallelogram, or a point spring has an oblique direction
       void
-      add_springs(dealii::ConditionalOStream &pcout);
+      add_springs(const scene::SpringSet     &springs,
+                  dealii::ConditionalOStream &pcout);
     };
-
-    /**
-     * The density [kg/m^3] of the body with material id @p id at the point
-     * @p p: the swept support density for the support, the file's value
-     * for the other bodies (what the mass parts are scaled by).
-     */
-    double
-    body_density(const parameters::AllParameters &prm,
-                 dealii::types::material_id       id,
-                 const parameters::ScalarPoint   &p);
 
     /**
      * Twice the kinetic energy per unit angular frequency squared of the

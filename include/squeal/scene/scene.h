@@ -1,0 +1,225 @@
+#ifndef squeal_scene_scene_h
+#define squeal_scene_scene_h
+
+/**
+ * @file
+ * A scene: the mesh of a brake and its named parts, the one place where the
+ * analyses learn what they act on. A scene makes its coarse mesh (material
+ * ids = its bodies, boundary ids = its face sets) and lists the bodies with
+ * their materials, the contact pairs with their sliding motion, the holds,
+ * the loads, the springs and the probes. The analyses (physics, contact,
+ * CEA, preload, braking) read only these lists: none of them knows a disc
+ * radius, a pad position or an id number.
+ *
+ * make_scene() is the factory: Scene/Bodies = `tribobrake` gives the
+ * TriboBrake of F. Massi's thesis (2006, § 3.2.1, geometry/tribobrake_mesh.h),
+ * `disc` its clamped disc alone.
+ */
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/grid/tria.h>
+
+#include <squeal/parameters/parameters.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace squeal
+{
+  namespace scene
+  {
+    /** A body: the cells of one material id, of one material. */
+    struct Body
+    {
+      std::string                name; ///< as in outputs (`disc`, `pad`)
+      dealii::types::material_id id = 0;
+      /// isotropic elastic constants [Pa, -, kg/m^3]
+      parameters::Material material;
+      /// the sweep parameter `pad modulus` scales this body's Young's
+      /// modulus (its stiffness is a separate matrix part)
+      bool modulus_swept = false;
+      /// the sweep parameter `support density` scales this body's density
+      /// (its mass is a separate matrix part)
+      bool density_swept = false;
+      /// a disc: its modes are named (n,m+-) from the axial motion of
+      /// the face set @ref naming_face in the frame below
+      bool disc = false;
+      /// disc only: the face whose axial motion names the modes
+      dealii::types::boundary_id naming_face = 0;
+      /// disc only: centre [m], unit axis, unit reference direction
+      /// (theta = 0, where the pad sits), inner and outer radius [m]
+      dealii::Point<3>     centre;
+      dealii::Tensor<1, 3> axis;
+      dealii::Tensor<1, 3> reference;
+      double               inner_radius = 0.;
+      double               outer_radius = 0.;
+
+      /** Disc only: (r [m], theta [rad]) of @p x in the disc's frame. */
+      std::pair<double, double>
+      polar(const dealii::Point<3> &x) const;
+    };
+
+    /**
+     * A contact pair: a slave face set pressed on a master face set that
+     * slides under it. The linear friction coupling of the CEA integrates
+     * on the slave face's plane (unit @ref normal, in-plane axes
+     * @ref plane_axes); the master turns about @ref axis through
+     * @ref axis_point.
+     */
+    struct ContactPair
+    {
+      std::string                name;
+      dealii::types::boundary_id slave  = 0; ///< pad side
+      dealii::types::boundary_id master = 0; ///< disc side
+      /// centre of the slave face [m]
+      dealii::Point<3> centre;
+      /// unit normal of the slave face's plane, from the master into the
+      /// slave (the direction the slave separates in)
+      dealii::Tensor<1, 3> normal;
+      /// orthonormal in-plane axes (plane_axes[0] x plane_axes[1] = normal)
+      std::array<dealii::Tensor<1, 3>, 2> plane_axes;
+      /// a point of the slave face's plane [m]
+      dealii::Point<3> plane_origin;
+      /// unit sliding direction of the master under the slave's centre
+      /// (the linear coupling's tangent, thesis eq. 3-1)
+      dealii::Tensor<1, 3> sliding;
+      /// rotation axis of the master (unit) and a point on it [m]
+      dealii::Tensor<1, 3> axis;
+      dealii::Point<3>     axis_point;
+      /// a length of the slave face [m] (its edge), for tolerances
+      double size = 1.;
+
+      /** The unit radial direction from the axis to the centre. */
+      dealii::Tensor<1, 3>
+      radial() const;
+      /** In-plane coordinates [m] of @p x on the slave's plane. */
+      dealii::Point<2>
+      to_plane(const dealii::Point<3> &x) const;
+      /** The point [m] of the plane with in-plane coordinates @p p. */
+      dealii::Point<3>
+      from_plane(const dealii::Point<2> &p) const;
+    };
+
+    /** A face set held fixed in some displacement components. */
+    struct Hold
+    {
+      std::string                name;
+      dealii::types::boundary_id id = 0;
+      std::array<bool, 3>        components{{true, true, true}};
+    };
+
+    /**
+     * One displacement component held at the node nearest a point (a
+     * loading arm that does not let the loaded body drift where no contact
+     * or spring holds it).
+     */
+    struct PointHold
+    {
+      std::string      name;
+      dealii::Point<3> point;         ///< m
+      unsigned int     component = 0; ///< 0, 1, 2
+    };
+
+    /** A total force spread uniformly over a face set. */
+    struct Load
+    {
+      std::string                name;
+      dealii::types::boundary_id id = 0;
+      /// unit direction of the force (its magnitude is the analysis')
+      dealii::Tensor<1, 3> direction;
+    };
+
+    /**
+     * Springs to ground on the faces of one body, each spread over the
+     * disc of radius @ref radius around its station on a plane face (a
+     * Winkler layer of stiffness density k w(x) / int(w) [N/m^3], w the
+     * cosine bell), acting along @ref direction. A station no node lies
+     * within the radius of (or radius 0) goes to the nearest node.
+     */
+    struct SpringSet
+    {
+      std::string                name;
+      dealii::types::material_id body = 0;
+      std::vector<dealii::Point<3>>     stations;       ///< m
+      std::vector<dealii::Tensor<1, 3>> station_normals; ///< unit, per station
+      dealii::Tensor<1, 3>              direction;      ///< unit
+      double stiffness = 0.; ///< N/m per spring
+      double radius    = 0.; ///< m
+      double tolerance = 1e-9; ///< m, distance of a face from a station's plane
+    };
+
+    /** A named point where results are recorded. */
+    struct Probe
+    {
+      std::string      name;
+      dealii::Point<3> point; ///< m
+    };
+
+    /** The scene interface: see the file comment. */
+    class Scene
+    {
+    public:
+      virtual ~Scene() = default;
+
+      /**
+       * Fills the empty @p tria with the coarse mesh: material ids of the
+       * bodies, boundary ids of the face sets, manifolds of curved parts.
+       */
+      virtual void
+      make_mesh(dealii::Triangulation<3> &tria) const = 0;
+
+      /** A one-line description for logs. */
+      virtual std::string
+      description() const = 0;
+
+      std::vector<Body>        bodies;
+      std::vector<ContactPair> contact_pairs;
+      std::vector<Hold>        holds;
+      std::vector<PointHold>   point_holds;
+      std::vector<Load>        loads;
+      std::vector<SpringSet>   springs;
+      std::vector<Probe>       probes;
+
+      /**
+       * The body with material id @p id.
+       * @throws std::runtime_error naming the id and the scene's bodies.
+       */
+      const Body &
+      body(dealii::types::material_id id) const;
+
+      /**
+       * The density [kg/m^3] of body @p id at the sweep point @p p: the
+       * swept support density for a density_swept body, its material's
+       * otherwise.
+       */
+      double
+      density(dealii::types::material_id     id,
+              const parameters::ScalarPoint &p) const;
+
+      /**
+       * Young's modulus [Pa] of body @p id at @p p: the swept pad modulus
+       * for a modulus_swept body, its material's otherwise.
+       */
+      double
+      youngs_modulus(dealii::types::material_id     id,
+                     const parameters::ScalarPoint &p) const;
+
+      /** The first body declared a disc, or nullptr. */
+      const Body *
+      disc() const;
+    };
+
+    /**
+     * The scene of the file (Scene/Bodies), with its parameters copied.
+     * @throws std::runtime_error on an unknown scene type.
+     */
+    std::unique_ptr<Scene>
+    make_scene(const parameters::AllParameters &prm);
+  } // namespace scene
+} // namespace squeal
+
+#endif

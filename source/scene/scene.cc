@@ -1,0 +1,212 @@
+// The scene interface's shared parts and the factory. The TriboBrake scene
+// lists the rig's parts (thesis § 3.2.1) in the ids its mesher sets.
+
+#include <deal.II/grid/tria.h>
+
+#include <squeal/geometry/tribobrake_mesh.h>
+#include <squeal/scene/scene.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace scene
+  {
+    using namespace dealii;
+
+    Tensor<1, 3>
+    ContactPair::radial() const
+    {
+      Tensor<1, 3> d = centre - axis_point;
+      d -= (d * axis) * axis;
+      return d / d.norm();
+    }
+
+    Point<2>
+    ContactPair::to_plane(const Point<3> &x) const
+    {
+      const Tensor<1, 3> d = x - plane_origin;
+      return Point<2>(d * plane_axes[0], d * plane_axes[1]);
+    }
+
+    Point<3>
+    ContactPair::from_plane(const Point<2> &p) const
+    {
+      return plane_origin + p[0] * plane_axes[0] + p[1] * plane_axes[1];
+    }
+
+    std::pair<double, double>
+    Body::polar(const Point<3> &x) const
+    {
+      const Tensor<1, 3> d  = x - centre;
+      const Tensor<1, 3> e2 = cross_product_3d(axis, reference);
+      const double       a = d * reference, b = d * e2;
+      return {std::hypot(a, b), std::atan2(b, a)};
+    }
+
+    const Body &
+    Scene::body(const types::material_id id) const
+    {
+      for (const Body &b : bodies)
+        if (b.id == id)
+          return b;
+      std::string names;
+      for (const Body &b : bodies)
+        names += (names.empty() ? "" : ", ") + b.name + " (" +
+                 std::to_string(b.id) + ")";
+      throw std::runtime_error("scene " + description() +
+                               ": no body has material id " +
+                               std::to_string(id) + "; its bodies are " +
+                               names);
+    }
+
+    double
+    Scene::density(const types::material_id id,
+                   const parameters::ScalarPoint &p) const
+    {
+      const Body &b = body(id);
+      return b.density_swept ? p.support_density : b.material.density;
+    }
+
+    double
+    Scene::youngs_modulus(const types::material_id id,
+                          const parameters::ScalarPoint &p) const
+    {
+      const Body &b = body(id);
+      return b.modulus_swept ? p.E_pad : b.material.youngs_modulus;
+    }
+
+    const Body *
+    Scene::disc() const
+    {
+      for (const Body &b : bodies)
+        if (b.disc)
+          return &b;
+      return nullptr;
+    }
+
+    namespace
+    {
+      /**
+       * The TriboBrake (thesis § 3.2.1): disc clamped at its hub, pad on the
+       * disc's top face z = 0 at (pad radius, 0), support beam above the pad
+       * held by springs along the sliding direction on its two side faces
+       * y = +-pad/2, loaded on its top; or its disc alone.
+       */
+      class TriboBrakeScene : public Scene
+      {
+      public:
+        TriboBrakeScene(const parameters::AllParameters &prm,
+                        const bool                       with_pad)
+          : geometry(prm.geometry)
+          , mesh(prm.mesh)
+          , with_pad(with_pad)
+        {
+          namespace material = geometry::material;
+          namespace boundary = geometry::boundary;
+          const auto &g = prm.geometry;
+
+          Body disc{"disc", material::disc, prm.materials.disc};
+          disc.disc         = true;
+          disc.naming_face  = boundary::disc_contact;
+          disc.centre       = Point<3>();
+          disc.axis         = Tensor<1, 3>({0., 0., 1.});
+          disc.reference    = Tensor<1, 3>({1., 0., 0.});
+          disc.inner_radius = g.disc_inner_radius;
+          disc.outer_radius = g.disc_outer_radius;
+          bodies.push_back(disc);
+          holds.push_back({"disc hub", boundary::clamped, {{true, true, true}}});
+          if (!with_pad)
+            return;
+
+          Body pad{"pad", material::pad, prm.materials.pad};
+          pad.modulus_swept = true;
+          bodies.push_back(pad);
+          Body support{"support", material::support, prm.materials.support};
+          support.density_swept = true;
+          bodies.push_back(support);
+
+          ContactPair pair;
+          pair.name          = "pad on disc";
+          pair.slave         = boundary::pad_contact;
+          pair.master        = boundary::disc_contact;
+          pair.centre        = Point<3>(g.pad_radius, 0., 0.);
+          pair.normal        = Tensor<1, 3>({0., 0., 1.});
+          pair.plane_axes[0] = Tensor<1, 3>({1., 0., 0.});
+          pair.plane_axes[1] = Tensor<1, 3>({0., 1., 0.});
+          pair.plane_origin  = Point<3>();
+          pair.sliding       = prm.interface.sliding_tangent();
+          pair.axis          = Tensor<1, 3>({0., 0., 1.});
+          pair.axis_point    = Point<3>();
+          pair.size          = g.pad_size;
+          contact_pairs.push_back(pair);
+
+          // the loading arm holds the support top's centre along the radius
+          const Point<3> top(g.pad_radius, 0., g.pad_size + g.support_length);
+          point_holds.push_back({"loading arm", top, 0});
+          loads.push_back(
+            {"support top", boundary::support_top, Tensor<1, 3>({0., 0., -1.})});
+          probes.push_back({"pad centre", pair.centre});
+
+          // Spring stations: on the two support faces y = +-pad_size/2,
+          // rows at x = the centres of n_rows equal strips of the face
+          // width, and along the support at evenly spaced heights, both
+          // ends included.
+          const auto &s = prm.springs;
+          if (s.n_rows_per_side == 0)
+            return;
+          SpringSet springs_set;
+          springs_set.name      = "support springs";
+          springs_set.body      = material::support;
+          springs_set.direction = Tensor<1, 3>({0., 1., 0.});
+          springs_set.stiffness = s.stiffness;
+          springs_set.radius    = s.attachment_radius;
+          springs_set.tolerance = 1e-6 * g.pad_size;
+          for (const double y : {-g.pad_size / 2, g.pad_size / 2})
+            for (unsigned int r = 0; r < s.n_rows_per_side; ++r)
+              for (unsigned int k = 0; k < s.n_per_row; ++k)
+                {
+                  springs_set.stations.emplace_back(
+                    g.pad_radius - g.pad_size / 2 +
+                      g.pad_size * (r + 0.5) / s.n_rows_per_side,
+                    y,
+                    g.pad_size + (s.n_per_row == 1 ?
+                                    g.support_length / 2 :
+                                    g.support_length * k / (s.n_per_row - 1)));
+                  springs_set.station_normals.push_back(
+                    Tensor<1, 3>({0., y > 0 ? 1. : -1., 0.}));
+                }
+          springs.push_back(springs_set);
+        }
+
+        void
+        make_mesh(Triangulation<3> &tria) const override
+        {
+          geometry::make_tribobrake_mesh(geometry, mesh, with_pad, tria);
+        }
+
+        std::string
+        description() const override
+        {
+          return with_pad ? "tribobrake" : "disc";
+        }
+
+      private:
+        const parameters::Geometry geometry;
+        const parameters::Mesh     mesh;
+        const bool                 with_pad;
+      };
+    } // namespace
+
+    std::unique_ptr<Scene>
+    make_scene(const parameters::AllParameters &prm)
+    {
+      if (prm.scene.bodies == "tribobrake" || prm.scene.bodies == "disc")
+        return std::make_unique<TriboBrakeScene>(prm, prm.scene.bodies ==
+                                                         "tribobrake");
+      throw std::runtime_error("Scene/Bodies = '" + prm.scene.bodies +
+                               "': allowed are tribobrake and disc");
+    }
+  } // namespace scene
+} // namespace squeal
