@@ -1,7 +1,9 @@
 // squeal's program: read a .prm file, echo the resolved parameters, run the
 // analysis it asks for. Usage:
 //   squeal [--overwrite] FILE.prm      run
-//   squeal --validate FILE.prm         parse and report, run nothing
+//   squeal --validate FILE.prm         parse, build the scene, run nothing
+//   squeal --export-mesh OUT.inp FILE.prm   the scene's coarse mesh and sets
+//                                      as an Abaqus/CalculiX input file
 //   squeal --resume DIRECTORY          continue a stopped braking run
 //   squeal --print-parameters          every parameter with default, range, help
 
@@ -10,6 +12,8 @@
 
 #include <squeal/cea/complex_eigenvalue_analysis.h>
 #include <squeal/contact/preload.h>
+#include <squeal/io/mesh_file.h>
+#include <squeal/scene/scene.h>
 #include <squeal/parameters/parameters.h>
 #include <squeal/transient/braking.h>
 
@@ -30,7 +34,8 @@ main(int argc, char **argv)
   const std::vector<std::string> args(argv + 1, argv + argc);
   const std::string usage =
     "usage: squeal [--overwrite] FILE.prm | --validate FILE.prm | "
-    "--resume DIRECTORY | --print-parameters";
+    "--export-mesh OUT.inp FILE.prm | --resume DIRECTORY | "
+    "--print-parameters";
   try
     {
       squeal::parameters::AllParameters prm;
@@ -43,10 +48,18 @@ main(int argc, char **argv)
           return 0;
         }
       bool        validate = false, overwrite = false, resume = false;
-      std::string file;
-      for (const auto &a : args)
-        if (a == "--validate")
+      std::string file, export_mesh;
+      for (unsigned int i = 0; i < args.size(); ++i)
+        if (const std::string &a = args[i]; a == "--validate")
           validate = true;
+        else if (a == "--export-mesh")
+          {
+            if (i + 1 == args.size() || args[i + 1].empty() ||
+                args[i + 1][0] == '-')
+              throw std::runtime_error("--export-mesh needs the .inp file to "
+                                       "write\n" + usage);
+            export_mesh = args[++i];
+          }
         else if (a == "--resume")
           resume = true;
         else if (a == "--overwrite")
@@ -94,11 +107,42 @@ main(int argc, char **argv)
       else
         prm.read(handler, file);
       prm.output.overwrite = prm.output.overwrite || overwrite;
+      if (validate || !export_mesh.empty())
+        {
+          // the scene, checked against its mesh and the analysis
+          const auto scene = squeal::scene::make_scene(prm);
+          squeal::scene::check_for_analysis(
+            *scene, prm.scene.analysis,
+            prm.scene.analysis == "braking" &&
+              prm.transient.initial_perturbation > 0.);
+          if (!export_mesh.empty())
+            {
+              if (std::filesystem::exists(export_mesh) && !overwrite)
+                throw std::runtime_error("--export-mesh: '" + export_mesh +
+                                         "' exists; give --overwrite to "
+                                         "replace it");
+              Triangulation<3> tria;
+              scene->make_mesh(tria);
+              if (tria.n_levels() > 1)
+                throw std::runtime_error(
+                  "--export-mesh writes the coarse mesh; this scene refines "
+                  "its mesh as it makes it (Mesh/Disc refinements under pad "
+                  "> 0)");
+              if (root)
+                squeal::io::write_abaqus(tria, scene->named_sets(tria),
+                                         export_mesh);
+              if (root)
+                std::cout << "Wrote " << export_mesh << ": "
+                          << tria.n_active_cells() << " cells of scene "
+                          << scene->description() << std::endl;
+              return 0;
+            }
+        }
       if (validate)
         {
           if (root)
             {
-              std::cout << file << ": valid (scene " << prm.scene.bodies
+              std::cout << file << ": valid (scene " << prm.scene.type
                         << ", " << prm.scene.analysis;
               if (prm.scene.analysis == "braking")
                 std::cout << ", " << prm.transient.normal_force << " N, "

@@ -64,7 +64,7 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using test_tools::check;
   parameters::AllParameters prm; // the defaults are the default mesh
-  prm.scene.bodies = "disc";
+  prm.scene.type = "disc";
   {
     physics::StructuralModel model(prm, MPI_COMM_WORLD);
     const auto               l = solve(prm, 0., 0., model);

@@ -31,7 +31,7 @@ main(int argc, char **argv)
   using namespace squeal;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   parameters::AllParameters prm = test_tools::coarse_tribobrake(32, 4, 2);
-  prm.scene.bodies              = "disc";
+  prm.scene.type              = "disc";
   ConditionalOStream          quiet(std::cout, false);
   physics::StructuralModel    model(prm, MPI_COMM_WORLD);
   model.setup_and_assemble(quiet);

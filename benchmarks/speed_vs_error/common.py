@@ -137,7 +137,7 @@ def run_disc(squeal, work, degree, around, radial, thick, max_frequency, ranks=1
     name = f"d{degree}_{around}x{radial}x{thick}"
     out = os.path.join(work, name + (f"_np{ranks}" if ranks > 1 else ""))
     stdout, seconds = run_squeal(squeal, """subsection Scene
-  set Bodies = disc
+  set Type = disc
 end
 """ + disc_mesh(degree, around, radial, thick) + f"""subsection Eigensolver
   set Method = full

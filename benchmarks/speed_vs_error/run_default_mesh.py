@@ -93,7 +93,7 @@ def run(name, ranks=1):
                                            out + ".stdout", out + ".seconds")):
         print(f"running {name} ...", flush=True)
         stdout, seconds = run_squeal(
-            squeal, "subsection Scene\n  set Bodies = tribobrake\nend\n"
+            squeal, "subsection Scene\n  set Type = tribobrake\nend\n"
             + RUNS[name] + single_point_sweep("pad modulus", 1e9,
                                               "friction coefficient", 0.01),
             out, ranks)

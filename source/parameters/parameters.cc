@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -42,14 +43,87 @@ namespace squeal
     } // namespace
 
     void
+    MeshFileScene::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Mesh file");
+      prm.declare_entry("File", file, Patterns::Anything(),
+                        "The hexahedral mesh: Gmsh .msh (ASCII 2.2 or 4.1; "
+                        "physical groups name the cell and face sets) or "
+                        "Abaqus/CalculiX .inp (*ELSET, *SURFACE, *NSET; "
+                        "exported names are upper case). A relative path is "
+                        "taken from the parameter file's folder.");
+      prm.declare_entry("Length unit", str(length_unit),
+                        Patterns::Double(0., Patterns::Double::max_double_value),
+                        "Metres per mesh unit (1e-3 for a mesh in mm).");
+      prm.declare_entry(
+        "Bodies", bodies, Patterns::Anything(),
+        "name: key=value, ...; one item per body. Keys: set (cell set, "
+        "default the name), E [Pa], nu, rho [kg/m^3] (all three required), "
+        "type = other | disc | pad | support (pad: the sweep parameter "
+        "'pad modulus' sets its E; support: 'support density' sets its rho; "
+        "disc: its modes are named (n,m+-)), and for a disc: face (the face "
+        "set whose axial motion names the modes, required), axis (default "
+        "0 0 1), centre [m] (default 0 0 0), manifold = none | cylindrical "
+        "(refinement and the mapping follow the circle about the axis). "
+        "Every cell must belong to exactly one body.");
+      prm.declare_entry(
+        "Contact pairs", contact_pairs, Patterns::Anything(),
+        "name: slave=<face set>, master=<face set>[, sliding=tx ty tz]; the "
+        "slave face set must be plane (the pad's friction face), the master "
+        "(the disc's face) in reach of it. Without sliding, the master turns "
+        "about the disc's axis in Interface/Rotation sense. Friction "
+        "coefficient and stiffness: subsection Interface.");
+      prm.declare_entry("Holds", holds, Patterns::Anything(),
+                        "name: set=<face set>[, components=xyz]: the faces "
+                        "held fixed in the given displacement components "
+                        "(default all three).");
+      prm.declare_entry("Point holds", point_holds, Patterns::Anything(),
+                        "name: point=x y z [m], component=x|y|z: one "
+                        "displacement component held at the node nearest "
+                        "the point (a loading arm).");
+      prm.declare_entry("Loads", loads, Patterns::Anything(),
+                        "name: set=<face set>, direction=dx dy dz: the "
+                        "preload's and the braking run's normal force, spread "
+                        "uniformly over the faces along the direction.");
+      prm.declare_entry(
+        "Springs", springs, Patterns::Anything(),
+        "name: body=<body>, direction=dx dy dz, points=x y z | x y z | ... "
+        "or nodes=<node set>[, radius=a [m]]: springs to ground of "
+        "Springs/Stiffness each, on the body's boundary faces through the "
+        "points, each spread over radius a (default Springs/Attachment "
+        "radius; 0: the nearest node).");
+      prm.declare_entry("Probes", probes, Patterns::Anything(),
+                        "name: point=x y z [m]: named points.");
+      prm.leave_subsection();
+    }
+
+    void
+    MeshFileScene::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh file");
+      file          = prm.get("File");
+      length_unit   = prm.get_double("Length unit");
+      bodies        = prm.get("Bodies");
+      contact_pairs = prm.get("Contact pairs");
+      holds         = prm.get("Holds");
+      point_holds   = prm.get("Point holds");
+      loads         = prm.get("Loads");
+      springs       = prm.get("Springs");
+      probes        = prm.get("Probes");
+      prm.leave_subsection();
+    }
+
+    void
     Scene::declare_parameters(ParameterHandler &prm) const
     {
       prm.enter_subsection("Scene");
-      prm.declare_entry("Bodies",
-                        bodies,
-                        Patterns::Selection("tribobrake|disc"),
+      prm.declare_entry("Type",
+                        type,
+                        Patterns::Selection("tribobrake|disc|mesh file"),
                         "tribobrake: disc, pad, support and springs with the "
-                        "friction interface; disc: the clamped disc alone.");
+                        "friction interface (Geometry, Mesh, Materials, "
+                        "Springs); disc: the clamped disc alone; mesh file: "
+                        "the scene of subsection Mesh file.");
       prm.declare_entry("Analysis", analysis,
                         Patterns::Selection("cea|preload|preloaded cea|braking"),
                         "cea: complex eigenvalue analysis over the sweep; "
@@ -60,7 +134,9 @@ namespace squeal
                         "nominal parameters, then the CEA with the interface "
                         "stiffness and friction coupling only where the pad "
                         "stayed in contact (serial); braking: the transient "
-                        "braking simulation (subsection Transient).");
+                        "braking simulation (subsection Transient). All but "
+                        "cea need a scene with one contact pair and one load.");
+      mesh_file.declare_parameters(prm);
       prm.leave_subsection();
     }
 
@@ -68,12 +144,13 @@ namespace squeal
     Scene::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Scene");
-      bodies   = prm.get("Bodies");
+      type     = prm.get("Type");
       analysis = prm.get("Analysis");
+      mesh_file.parse_parameters(prm);
       prm.leave_subsection();
-      if (analysis != "cea" && bodies != "tribobrake")
-        throw std::runtime_error("Scene/Analysis = " + analysis +
-                                 " needs Scene/Bodies = tribobrake");
+      if (type == "mesh file" && mesh_file.file.empty())
+        throw std::runtime_error(
+          "Scene/Type = mesh file needs Scene/Mesh file/File");
     }
 
     void
@@ -1104,6 +1181,22 @@ namespace squeal
         {
           throw std::runtime_error("in parameter file '" + filename +
                                    "': " + e.what());
+        }
+      // A relative mesh path is the parameter file's neighbour: made
+      // absolute here, and in the handler, so that the copy of the
+      // parameters a run writes (and --resume reads) finds it too.
+      auto &mesh = scene.mesh_file.file;
+      if (!mesh.empty() && std::filesystem::path(mesh).is_relative())
+        {
+          mesh = std::filesystem::absolute(
+                   std::filesystem::path(filename).parent_path() / mesh)
+                   .lexically_normal()
+                   .string();
+          prm.enter_subsection("Scene");
+          prm.enter_subsection("Mesh file");
+          prm.set("File", mesh);
+          prm.leave_subsection();
+          prm.leave_subsection();
         }
     }
   } // namespace parameters

@@ -4,6 +4,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <squeal/geometry/tribobrake_mesh.h>
+#include <squeal/scene/mesh_file_scene.h>
 #include <squeal/scene/scene.h>
 
 #include <cmath>
@@ -192,6 +193,28 @@ namespace squeal
           return with_pad ? "tribobrake" : "disc";
         }
 
+        NamedSets
+        named_sets(const Triangulation<3> &tria) const override
+        {
+          NamedSets sets = geometry::tribobrake_sets(tria);
+          // the spring stations as a node set when they are mesh vertices
+          // (they are for the default mesh counts)
+          for (const SpringSet &s : springs)
+            {
+              unsigned int on_vertex = 0;
+              for (const Point<3> &x : s.stations)
+                for (const Point<3> &v : tria.get_vertices())
+                  if (x.distance(v) < 1e-9 * geometry.pad_size)
+                    {
+                      ++on_vertex;
+                      break;
+                    }
+              if (on_vertex == s.stations.size())
+                sets.node_sets[s.name] = s.stations;
+            }
+          return sets;
+        }
+
       private:
         const parameters::Geometry geometry;
         const parameters::Mesh     mesh;
@@ -202,11 +225,35 @@ namespace squeal
     std::unique_ptr<Scene>
     make_scene(const parameters::AllParameters &prm)
     {
-      if (prm.scene.bodies == "tribobrake" || prm.scene.bodies == "disc")
-        return std::make_unique<TriboBrakeScene>(prm, prm.scene.bodies ==
+      if (prm.scene.type == "tribobrake" || prm.scene.type == "disc")
+        return std::make_unique<TriboBrakeScene>(prm, prm.scene.type ==
                                                          "tribobrake");
-      throw std::runtime_error("Scene/Bodies = '" + prm.scene.bodies +
-                               "': allowed are tribobrake and disc");
+      if (prm.scene.type == "mesh file")
+        return std::make_unique<MeshFileScene>(prm);
+      throw std::runtime_error("Scene/Type = '" + prm.scene.type +
+                               "': allowed are tribobrake, disc and mesh file");
+    }
+
+    void
+    check_for_analysis(const Scene       &scene,
+                       const std::string &analysis,
+                       const bool         seeded)
+    {
+      if (analysis == "cea")
+        return;
+      const std::string what = "Scene/Analysis = " + analysis + " needs ";
+      if (scene.contact_pairs.size() != 1)
+        throw std::runtime_error(what + "exactly one contact pair; scene " +
+                                 scene.description() + " has " +
+                                 std::to_string(scene.contact_pairs.size()));
+      if (scene.loads.size() != 1)
+        throw std::runtime_error(what + "exactly one load; scene " +
+                                 scene.description() + " has " +
+                                 std::to_string(scene.loads.size()));
+      if (seeded && scene.disc() == nullptr)
+        throw std::runtime_error(
+          "Transient/Initial perturbation > 0 seeds a disc mode; scene " +
+          scene.description() + " has no body of type disc");
     }
   } // namespace scene
 } // namespace squeal

@@ -4,7 +4,7 @@
 usage: check_adaptive_tolerance.py SQUEAL PRM WORKDIR
 
 PRM has a Mesh/Frequency tolerance. The true error of each mode of the band
-on the final mesh is, for the clamped disc alone (Scene/Bodies = disc,
+on the final mesh is, for the clamped disc alone (Scene/Type = disc,
 tests/end_to_end/adaptive_tolerance_disc.prm), its relative distance to the
 converged frequencies of verification.md A3 (the k-th computed against the
 k-th of the table expanded by multiplicity); for the TriboBrake
@@ -83,7 +83,7 @@ f_max, f_min = entry("Maximum frequency", 20000.), entry("Minimum frequency", 90
 band = sorted((r for r in modes if int(r["cycle"]) == last
                and 1.02 * f_min < float(r["freq_Hz"]) < 0.98 * f_max),
               key=lambda r: float(r["freq_Hz"]))
-disc = "Bodies = disc" in text
+disc = "Type = disc" in text
 if not disc and "Rows per side = 0" not in text:
     check("the springs are spread over their attachment discs",
           "44 spread over radius" in log, log[log.find("Springs:"):][:200])

@@ -22,18 +22,43 @@ namespace squeal
     using dealii::ParameterHandler;
 
     /**
-     * Which bodies the scene holds. `tribobrake`: disc, pad, support and
-     * springs (thesis ch. 3); `disc`: the clamped disc alone (verification
-     * A3).
+     * A scene read from a mesh file (Scene/Type = mesh file): the file and
+     * its length unit, and the lists that turn its named sets into bodies,
+     * contact pairs, holds, point holds, loads, springs and probes. Each
+     * list is `name: key=value, key=value; name: ...` (the keys are in the
+     * help of each entry, --print-parameters); scene::make_scene() parses
+     * and checks them against the mesh.
+     */
+    struct MeshFileScene
+    {
+      std::string file;               ///< `.msh` or `.inp`, absolute after read()
+      double      length_unit = 1.;   ///< m per mesh unit
+      std::string bodies;
+      std::string contact_pairs;
+      std::string holds;
+      std::string point_holds;
+      std::string loads;
+      std::string springs;
+      std::string probes;
+      void declare_parameters(ParameterHandler &prm) const;
+      void parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * What the run acts on and which analysis it runs. Type `tribobrake`:
+     * disc, pad, support and springs (thesis ch. 3); `disc`: the clamped
+     * disc alone (verification A3); `mesh file`: the scene of subsection
+     * Mesh file.
      */
     struct Scene
     {
-      std::string bodies = "tribobrake";
+      std::string type = "tribobrake";
       /// `cea`: complex eigenvalue analysis (sweep); `preload`: the static
       /// frictional contact of the pad on the disc under the normal load;
       /// `preloaded cea`: the preload, then the CEA on its contact area;
       /// `braking`: the transient braking simulation
-      std::string analysis = "cea";
+      std::string   analysis = "cea";
+      MeshFileScene mesh_file;
       void declare_parameters(ParameterHandler &prm) const;
       void parse_parameters(ParameterHandler &prm);
     };

@@ -11,7 +11,7 @@
  * CEA, preload, braking) read only these lists: none of them knows a disc
  * radius, a pad position or an id number.
  *
- * make_scene() is the factory: Scene/Bodies = `tribobrake` gives the
+ * make_scene() is the factory: Scene/Type = `tribobrake` gives the
  * TriboBrake of F. Massi's thesis (2006, § 3.2.1, geometry/tribobrake_mesh.h),
  * `disc` its clamped disc alone.
  */
@@ -21,6 +21,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <squeal/parameters/parameters.h>
+#include <squeal/scene/named_sets.h>
 
 #include <array>
 #include <memory>
@@ -172,9 +173,16 @@ namespace squeal
       virtual void
       make_mesh(dealii::Triangulation<3> &tria) const = 0;
 
-      /** A one-line description for logs. */
+      /** A one-line description for logs and errors. */
       virtual std::string
       description() const = 0;
+
+      /**
+       * The named cell, face and node sets of the coarse mesh @p tria that
+       * make_mesh() built (for export: io::write_abaqus()).
+       */
+      virtual NamedSets
+      named_sets(const dealii::Triangulation<3> &tria) const = 0;
 
       std::vector<Body>        bodies;
       std::vector<ContactPair> contact_pairs;
@@ -214,11 +222,23 @@ namespace squeal
     };
 
     /**
-     * The scene of the file (Scene/Bodies), with its parameters copied.
-     * @throws std::runtime_error on an unknown scene type.
+     * The scene of the file (Scene/Type), with its parameters copied:
+     * `tribobrake`, `disc` or `mesh file` (scene/mesh_file_scene.h).
+     * @throws std::runtime_error on an unknown scene type, and what the
+     * scene's constructor throws.
      */
     std::unique_ptr<Scene>
     make_scene(const parameters::AllParameters &prm);
+
+    /**
+     * Checks that @p scene has what Scene/Analysis @p analysis needs: the
+     * preload, the preloaded CEA and braking one contact pair and one load;
+     * braking a disc too when @p seeded (an initial perturbation).
+     * @throws std::runtime_error naming the scene and what it lacks.
+     */
+    void
+    check_for_analysis(const Scene &scene, const std::string &analysis,
+                       bool seeded = false);
   } // namespace scene
 } // namespace squeal
 
