@@ -717,33 +717,34 @@ namespace squeal
       const Vector<double> sum =
         mode_indicator(pt->q.empty() ? pt->full : pairs, pt->values);
       const unsigned int n_cells = model->triangulation.n_active_cells();
-      std::array<double, 3> share{};
+      // per body of the scene: squared indicator and cells
+      const auto &bodies = model->scene->bodies;
+      std::map<types::material_id, std::pair<double, unsigned int>> by_body;
       Vector<float> indicator(n_cells), body(n_cells);
+      double        total = 0.;
       for (const auto &cell : model->triangulation.active_cell_iterators())
         {
           const unsigned int c = cell->active_cell_index();
           indicator[c]         = std::sqrt(sum[c]);
           body[c]              = cell->material_id();
-          share[std::min<unsigned int>(cell->material_id(), 2)] += sum[c];
+          by_body[cell->material_id()].first += sum[c];
+          ++by_body[cell->material_id()].second;
+          total += sum[c];
         }
-      const double total = share[0] + share[1] + share[2];
       pcout << "Error indicator (Kelly, " << pt->lambda.size()
-            << " modes of the first point; mesh_error.vtu): disc "
-            << std::setprecision(3) << 100. * share[0] / total << " %, pad "
-            << 100. * share[1] / total << " %, support "
-            << 100. * share[2] / total << " % of the squared sum"
-            << std::setprecision(6) << std::endl;
+            << " modes of the first point; mesh_error.vtu):"
+            << std::setprecision(3);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        pcout << (b == 0 ? " " : ", ") << bodies[b].name << " "
+              << 100. * by_body[bodies[b].id].first / total << " %";
+      pcout << " of the squared sum" << std::setprecision(6) << std::endl;
       if (Utilities::MPI::this_mpi_process(comm) == 0)
         {
           std::ofstream csv(work_dir + "/mesh_error.csv");
           csv << "body,cells,share_of_squared_indicator\n";
-          std::array<unsigned int, 3> cells{};
-          for (const auto &cell : model->triangulation.active_cell_iterators())
-            ++cells[std::min<unsigned int>(cell->material_id(), 2)];
-          const char *names[3] = {"disc", "pad", "support"};
-          for (unsigned int b = 0; b < 3; ++b)
-            csv << names[b] << ',' << cells[b] << ',' << share[b] / total
-                << '\n';
+          for (const scene::Body &b : bodies)
+            csv << b.name << ',' << by_body[b.id].second << ','
+                << by_body[b.id].first / total << '\n';
         }
       DataOut<3> data_out;
       data_out.attach_triangulation(model->triangulation);

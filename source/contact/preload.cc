@@ -225,9 +225,12 @@ namespace squeal
         Utilities::MPI::n_mpi_processes(comm) == 1 ?
           contact_system(model, pattern, stiffness, constraints).second :
           contact_system(model, stiffness_mpi, constraints, comm);
-      pcout << "Preload: " << model.n_dofs()
-            << " DoFs; radial displacement held at (" << held[0] << ", "
-            << held[1] << ", " << held[2] << ") m" << std::endl;
+      pcout << "Preload: " << model.n_dofs() << " DoFs";
+      for (const scene::PointHold &hold : model.scene->point_holds)
+        pcout << "; " << hold.name << ": " << "xyz"[hold.component]
+              << " held at (" << held[0] << ", " << held[1] << ", " << held[2]
+              << ") m";
+      pcout << std::endl;
     }
 
     void
@@ -245,10 +248,11 @@ namespace squeal
       mortar = build_mortar_operators(model.dof_handler, model.mapping,
                                       pair.slave, pair.master,
                                       prm.preload.search_distance);
-      pcout << "Interface: " << mortar.n_slave() << " pad nodes, pad face "
+      pcout << "Contact pair '" << pair.name << "': " << mortar.n_slave()
+            << " slave nodes, slave face "
             << mortar.slave_area * 1e6 << " mm^2, "
             << 100. * mortar.covered_area / mortar.slave_area
-            << " % over the disc" << std::endl;
+            << " % over the master face" << std::endl;
       ContactSettings s;
       s.friction = prm.preload.friction == "coulomb" ?
                      FrictionModel::coulomb :
@@ -328,7 +332,7 @@ namespace squeal
         max_p = std::max(max_p, state.nodal_pressure[j]);
       pcout << "Preload converged: normal force " << state.normal_force
             << " N, friction force " << state.tangential_force
-            << " N (the support's springs hold back " << spring_reaction
+            << " N (the springs hold back " << spring_reaction
             << " N), contact area " << state.contact_area * 1e6 << " of "
             << mortar.slave_area * 1e6 << " mm^2, mean pressure "
             << state.normal_force / state.contact_area / 1e6

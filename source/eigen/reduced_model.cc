@@ -125,11 +125,11 @@ namespace squeal
           model.symmetric_stiffness(s, K);
           model.mass(s, M);
           pcout << "  reduced basis: sample " << i + 1 << " of "
-                << samples.size() << " (E_pad = " << s.E_pad
-                << " Pa, k_n = " << s.interface_stiffness
-                << " N/m^3, k_spring = " << s.spring_stiffness
-                << " N/m, rho_support = " << s.support_density << " kg/m^3)"
-                << std::endl;
+                << samples.size() << " (pad modulus " << s.E_pad
+                << " Pa, interface stiffness " << s.interface_stiffness
+                << " N/m^3, spring stiffness " << s.spring_stiffness
+                << " N/m, support density " << s.support_density
+                << " kg/m^3)" << std::endl;
           const auto modes =
             solve_undamped(M, K, sample_band, band_factor, true, pcout);
           // the next sample has about as many modes: ask for them at once

@@ -366,7 +366,7 @@ namespace squeal
       history.status.assign(n_s, {});
 
       pcout << "Braking: " << n << " DoFs, " << mortar.n_slave()
-            << " pad-face nodes; radial displacement held at (" << held_point[0]
+            << " slave-face nodes; point holds at (" << held_point[0]
             << ", " << held_point[1] << ", " << held_point[2] << ") m\n"
             << "Stability limit " << limit.critical << " s (largest frequency "
             << limit.omega_max / (2 * numbers::PI) << " Hz, "
