@@ -132,7 +132,7 @@ namespace squeal
       prm.enter_subsection("Contact history");
       prm.declare_entry(
         "File", file, Anything(),
-        "HDF5 contact history (layout in the README), relative to this "
+        "HDF5 contact history (layout in doc/tribology.md), relative to this "
         "file's folder; 'synthetic' draws a squeal-like one (subsection "
         "Synthetic history); empty: no damage analysis, images only.");
       prm.declare_entry("Start time", std::to_string(start_time),

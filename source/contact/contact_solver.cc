@@ -446,11 +446,18 @@ namespace squeal
           std::vector<std::array<double, 2>> next_dir(dir);
           std::vector<double>                next_curl(n_s, 0.);
           double turn = 0., slip_residual = 0., z_max = 0.;
+          // An active node whose multiplier is negative only by rounding
+          // (|z| < 1e-9 of the largest) stays active: dropping it and
+          // taking it back forever was a cycle of the active set.
+          double z_scale = 0.;
+          for (unsigned int j = 0; j < n_s; ++j)
+            z_scale = std::max(z_scale, std::abs(s.pressure[j]));
           for (unsigned int j = 0; j < n_s; ++j)
             {
               if (!std::isfinite(op.gap0[j]))
                 continue;
-              next[j] = s.pressure[j] - c[j] * g[j] > 0.;
+              next[j] = s.pressure[j] - c[j] * g[j] >
+                        (active[j] ? -1e-9 * z_scale : 0.);
               info.changed += next[j] != active[j];
               info.active += next[j];
               z_max = std::max(z_max, s.pressure[j]);

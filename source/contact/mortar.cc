@@ -412,6 +412,64 @@ namespace squeal
       return op;
     }
 
+    MortarOperators
+    merge_mortar_operators(const std::vector<MortarOperators> &pairs)
+    {
+      if (pairs.empty())
+        throw std::runtime_error("merge_mortar_operators: no contact pair");
+      if (pairs.size() == 1)
+        return pairs.front();
+      MortarOperators all;
+      all.slave_id        = pairs.front().slave_id;
+      all.master_id       = pairs.front().master_id;
+      all.search_distance = pairs.front().search_distance;
+      all.n_points        = pairs.front().n_points;
+      all.n_pairs         = pairs.size();
+      all.slave_face_size = 1e300;
+      unsigned int n_s = 0;
+      for (const auto &op : pairs)
+        n_s += op.n_slave();
+      all.D.reinit(n_s);
+      all.gap0.reinit(n_s);
+      std::vector<Eigen::Triplet<double>> mass;
+      unsigned int s0 = 0;
+      for (const auto &op : pairs)
+        {
+          const unsigned int m0 = all.master_points.size();
+          for (unsigned int j = 0; j < op.n_slave(); ++j)
+            {
+              all.slave_points.push_back(op.slave_points[j]);
+              all.slave_dofs.push_back(op.slave_dofs[j]);
+              all.normals.push_back(op.normals[j]);
+              all.tangents1.push_back(op.tangents1[j]);
+              all.tangents2.push_back(op.tangents2[j]);
+              all.D[s0 + j]    = op.D[j];
+              all.gap0[s0 + j] = op.gap0[j];
+              std::vector<std::pair<unsigned int, double>> row = op.M[j];
+              for (auto &[l, value] : row)
+                l += m0;
+              all.M.push_back(std::move(row));
+            }
+          all.master_points.insert(all.master_points.end(),
+                                   op.master_points.begin(),
+                                   op.master_points.end());
+          all.master_dofs.insert(all.master_dofs.end(), op.master_dofs.begin(),
+                                 op.master_dofs.end());
+          for (int k = 0; k < op.slave_mass.outerSize(); ++k)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(op.slave_mass, k);
+                 it;
+                 ++it)
+              mass.emplace_back(s0 + it.row(), s0 + it.col(), it.value());
+          all.slave_face_size = std::min(all.slave_face_size, op.slave_face_size);
+          all.covered_area += op.covered_area;
+          all.slave_area += op.slave_area;
+          s0 += op.n_slave();
+        }
+      all.slave_mass.resize(n_s, n_s);
+      all.slave_mass.setFromTriplets(mass.begin(), mass.end());
+      return all;
+    }
+
     bool
     refresh_segmentation(MortarOperators     &op,
                          const DoFHandler<3> &dofs,
@@ -425,6 +483,13 @@ namespace squeal
           largest_tangential_slip(op, u, u_segmented) <=
             fraction * op.slave_face_size)
         return false;
+      if (op.n_pairs > 1)
+        throw std::runtime_error(
+          "the slip since the last mortar segmentation exceeds Preload/"
+          "Segmentation refresh, and rebuilding it on the deformed surfaces "
+          "is done for one contact pair only; this scene has " +
+          std::to_string(op.n_pairs) + " (set Segmentation refresh = 0 "
+          "for small sliding)");
       op = build_mortar_operators_deformed(dofs, u, op.slave_id, op.master_id,
                                            op.search_distance, op.n_points);
       u_segmented = u;

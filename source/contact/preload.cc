@@ -16,6 +16,7 @@
 #include <squeal/output/output_directory.h>
 
 #include <cmath>
+#include <set>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -32,10 +33,56 @@ namespace squeal
     {
       if (scene.contact_pairs.size() != 1)
         throw std::runtime_error(
-          "scene " + scene.description() + ": the preload and the braking "
-          "run handle exactly one contact pair; the scene has " +
+          "scene " + scene.description() + ": Mesh/Contact refinements "
+          "handles exactly one contact pair; the scene has " +
           std::to_string(scene.contact_pairs.size()));
       return scene.contact_pairs.front();
+    }
+
+    Tensor<1, 3>
+    common_sliding(const scene::Scene &scene)
+    {
+      if (scene.contact_pairs.empty())
+        throw std::runtime_error("scene " + scene.description() +
+                                 " has no contact pair");
+      const Tensor<1, 3> t = scene.contact_pairs.front().sliding;
+      for (const scene::ContactPair &pair : scene.contact_pairs)
+        if ((pair.sliding - t).norm() > 1e-9)
+          throw std::runtime_error(
+            "scene " + scene.description() + ": contact pairs '" +
+            scene.contact_pairs.front().name + "' and '" + pair.name +
+            "' slide along different directions; the preload and the "
+            "braking run take one sliding direction for all pairs");
+      return t;
+    }
+
+    std::set<types::boundary_id>
+    slave_ids(const scene::Scene &scene)
+    {
+      std::set<types::boundary_id> ids;
+      for (const scene::ContactPair &pair : scene.contact_pairs)
+        ids.insert(pair.slave);
+      return ids;
+    }
+
+    MortarOperators
+    scene_mortar(const physics::StructuralModel &model,
+                 const double                    search_distance,
+                 ConditionalOStream             &pcout)
+    {
+      std::vector<MortarOperators> ops;
+      for (const scene::ContactPair &pair : model.scene->contact_pairs)
+        {
+          ops.push_back(build_mortar_operators(model.dof_handler, model.mapping,
+                                               pair.slave, pair.master,
+                                               search_distance));
+          const MortarOperators &op = ops.back();
+          pcout << "Contact pair '" << pair.name << "': " << op.n_slave()
+                << " slave nodes, slave face " << op.slave_area * 1e6
+                << " mm^2, " << 100. * op.covered_area / op.slave_area
+                << " % over the master face" << std::endl;
+        }
+      return merge_mortar_operators(ops);
     }
 
     std::pair<types::global_dof_index, Point<3>>
@@ -146,52 +193,51 @@ namespace squeal
                const AffineConstraints<double> &constraints,
                const double                     force)
     {
-      if (model.scene->loads.size() != 1)
-        throw std::runtime_error(
-          "scene " + model.scene->description() + ": the preload and the "
-          "braking run need exactly one load, the scene has " +
-          std::to_string(model.scene->loads.size()));
-      const scene::Load &applied = model.scene->loads.front();
-      Vector<double> load;
-      // Uniform traction on the load's faces: force / their area.
-      const auto        &fe = model.fe;
-      const QGauss<2>     q(fe.degree + 1);
-      FEFaceValues<3>     fv(model.mapping, fe, q,
-                         update_values | update_JxW_values);
-      double              area = 0.;
-      for (const auto &cell : model.dof_handler.active_cell_iterators())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              cell->face(f)->boundary_id() == applied.id)
-            {
-              fv.reinit(cell, f);
-              for (unsigned int k = 0; k < q.size(); ++k)
-                area += fv.JxW(k);
-            }
-      if (!(area > 0.))
-        throw std::runtime_error("load '" + applied.name +
-                                 "': its face set has no faces");
-      const double traction = force / area;
-      load.reinit(model.n_dofs());
+      if (model.scene->loads.empty())
+        throw std::runtime_error("scene " + model.scene->description() +
+                                 ": the preload and the braking run need a "
+                                 "load; the scene has none");
+      Vector<double> load(model.n_dofs());
+      const auto     &fe = model.fe;
+      const QGauss<2> q(fe.degree + 1);
+      FEFaceValues<3> fv(model.mapping, fe, q, update_values | update_JxW_values);
       Vector<double>                       cell_f(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-      for (const auto &cell : model.dof_handler.active_cell_iterators())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              cell->face(f)->boundary_id() == applied.id)
-            {
-              fv.reinit(cell, f);
-              cell_f = 0.;
-              for (unsigned int k = 0; k < q.size(); ++k)
-                for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-                  if (const double t = applied.direction[
-                        fe.system_to_component_index(i).first];
-                      t != 0.)
-                    cell_f[i] += traction * t * fv.shape_value(i, k) *
-                                 fv.JxW(k);
-              cell->get_dof_indices(dofs);
-              constraints.distribute_local_to_global(cell_f, dofs, load);
-            }
+      // Each load: a uniform traction force / area on its faces.
+      for (const scene::Load &applied : model.scene->loads)
+        {
+          double area = 0.;
+          for (const auto &cell : model.dof_handler.active_cell_iterators())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == applied.id)
+                {
+                  fv.reinit(cell, f);
+                  for (unsigned int k = 0; k < q.size(); ++k)
+                    area += fv.JxW(k);
+                }
+          if (!(area > 0.))
+            throw std::runtime_error("load '" + applied.name +
+                                     "': its face set has no faces");
+          const double traction = force / area;
+          for (const auto &cell : model.dof_handler.active_cell_iterators())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == applied.id)
+                {
+                  fv.reinit(cell, f);
+                  cell_f = 0.;
+                  for (unsigned int k = 0; k < q.size(); ++k)
+                    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+                      if (const double t = applied.direction[
+                            fe.system_to_component_index(i).first];
+                          t != 0.)
+                        cell_f[i] += traction * t * fv.shape_value(i, k) *
+                                     fv.JxW(k);
+                  cell->get_dof_indices(dofs);
+                  constraints.distribute_local_to_global(cell_f, dofs, load);
+                }
+        }
       return load;
     }
 
@@ -244,15 +290,7 @@ namespace squeal
     PreloadAnalysis::solve()
     {
       TimerOutput::Scope t(timer, "contact solve");
-      const scene::ContactPair &pair = single_pair(*model.scene);
-      mortar = build_mortar_operators(model.dof_handler, model.mapping,
-                                      pair.slave, pair.master,
-                                      prm.preload.search_distance);
-      pcout << "Contact pair '" << pair.name << "': " << mortar.n_slave()
-            << " slave nodes, slave face "
-            << mortar.slave_area * 1e6 << " mm^2, "
-            << 100. * mortar.covered_area / mortar.slave_area
-            << " % over the master face" << std::endl;
+      mortar = scene_mortar(model, prm.preload.search_distance, pcout);
       ContactSettings s;
       s.friction = prm.preload.friction == "coulomb" ?
                      FrictionModel::coulomb :
@@ -260,7 +298,7 @@ namespace squeal
                      FrictionModel::steady_sliding :
                      FrictionModel::frictionless;
       s.friction_coefficient = prm.interface.friction_coefficient;
-      s.sliding_direction    = pair.sliding;
+      s.sliding_direction    = common_sliding(*model.scene);
       s.master_slip          = prm.preload.disc_slip * s.sliding_direction;
       std::ostream *log = Utilities::MPI::this_mpi_process(comm) == 0 ?
                             &std::cout :
@@ -316,7 +354,7 @@ namespace squeal
         u[i] = state.displacement[i];
       u.compress(VectorOperation::insert);
       model.stiffness_springs.vmult(r, u);
-      const Tensor<1, 3> slide = single_pair(*model.scene).sliding;
+      const Tensor<1, 3> slide = common_sliding(*model.scene);
       const std::vector<unsigned int> component =
         physics::dof_support_points(model).second;
       spring_reaction = 0.;
@@ -350,7 +388,7 @@ namespace squeal
       const unsigned int n_s = mortar.n_slave();
       // The tangential traction as a nodal field too (the same L2
       // projection as the pressure), along and across the sliding direction.
-      const Tensor<1, 3> slide = single_pair(*model.scene).sliding;
+      const Tensor<1, 3> slide = common_sliding(*model.scene);
       Vector<double>     along(n_s), across_t(n_s);
       for (unsigned int j = 0; j < n_s; ++j)
         {
@@ -384,7 +422,7 @@ namespace squeal
           fields[mortar.slave_dofs[j][1]] = along[j];
           fields[mortar.slave_dofs[j][2]] = state.status[j];
         }
-      output::BoundaryFaceOutput out(single_pair(*model.scene).slave);
+      output::BoundaryFaceOutput out(slave_ids(*model.scene));
       out.attach_dof_handler(model.dof_handler);
       out.add_data_vector(fields,
                           std::vector<std::string>{"contact_pressure_Pa",

@@ -242,14 +242,12 @@ namespace squeal
       if (analysis == "cea")
         return;
       const std::string what = "Scene/Analysis = " + analysis + " needs ";
-      if (scene.contact_pairs.size() != 1)
-        throw std::runtime_error(what + "exactly one contact pair; scene " +
-                                 scene.description() + " has " +
-                                 std::to_string(scene.contact_pairs.size()));
-      if (scene.loads.size() != 1)
-        throw std::runtime_error(what + "exactly one load; scene " +
-                                 scene.description() + " has " +
-                                 std::to_string(scene.loads.size()));
+      if (scene.contact_pairs.empty())
+        throw std::runtime_error(what + "a contact pair; scene " +
+                                 scene.description() + " has none");
+      if (scene.loads.empty())
+        throw std::runtime_error(what + "a load; scene " +
+                                 scene.description() + " has none");
       if (seeded && scene.disc() == nullptr)
         throw std::runtime_error(
           "Transient/Initial perturbation > 0 seeds a disc mode; scene " +

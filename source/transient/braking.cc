@@ -200,12 +200,29 @@ namespace squeal
         return model.scene->density(cell->material_id(), nominal);
       });
 
-      const scene::ContactPair &pair = contact::single_pair(*model.scene);
-      mortar = contact::build_mortar_operators(model.dof_handler, model.mapping,
-                                               pair.slave, pair.master,
-                                               prm.preload.search_distance);
-      sliding = pair.sliding;
+      // every pair: the disc turns under all the pads at one angular
+      // velocity (the first pair's axis), the same sliding direction
+      const auto &pairs = model.scene->contact_pairs;
+      if (pairs.empty())
+        throw std::runtime_error("scene " + model.scene->description() +
+                                 " has no contact pair to brake on");
+      const scene::ContactPair &pair = pairs.front();
+      for (const scene::ContactPair &other : pairs)
+        if ((other.axis - pair.axis).norm() > 1e-9 ||
+            cross_product_3d(other.axis_point - pair.axis_point, pair.axis)
+                .norm() > 1e-9 * pair.size)
+          throw std::runtime_error(
+            "scene " + model.scene->description() + ": contact pairs '" +
+            pair.name + "' and '" + other.name +
+            "' turn about different axes; a braking run has one disc");
+      ConditionalOStream quiet(std::cout, false);
+      mortar  = contact::scene_mortar(model, prm.preload.search_distance,
+                                     quiet);
+      sliding = contact::common_sliding(*model.scene);
       radial  = pair.radial();
+      double pair_size = pair.size;
+      for (const scene::ContactPair &other : pairs)
+        pair_size = std::min(pair_size, other.size);
 
       // The matrix-free product: elasticity per material plus the springs'
       // diagonal (each spring ties one DoF to the ground), on this rank's
@@ -332,7 +349,7 @@ namespace squeal
       double s_min = 1e300;
       for (unsigned int j = 0; j < mortar.n_slave(); ++j)
         s_min = std::min(s_min, mortar.slave_points[j] * sliding);
-      const double h = pair.size * 1e-6;
+      const double h = pair_size * 1e-6;
       unsigned int best = 0;
       double       best_r = 1e300;
       for (unsigned int j = 0; j < mortar.n_slave(); ++j)
@@ -473,7 +490,7 @@ namespace squeal
           state[dofs[0]]     = c.status[j];
           state[dofs[1]]     = c.slip_velocity[j];
         }
-      output::BoundaryFaceOutput face(contact::single_pair(*model.scene).slave);
+      output::BoundaryFaceOutput face(contact::slave_ids(*model.scene));
       face.attach_dof_handler(model.dof_handler);
       face.add_data_vector(tractions,
                            std::vector<std::string>{"contact_pressure_Pa",

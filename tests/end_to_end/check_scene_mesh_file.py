@@ -162,6 +162,6 @@ refused("slave not plane", ["'DISC_HUB' is not plane"],
         **{"Contact pairs": "pad on disc: slave=DISC_HUB, master=PAD_FACE"})
 refused("unknown key", ["item 'disc'", "young=1", "set, E, nu, rho"],
         Bodies=SCENE["Bodies"].replace("E=210e9, nu", "young=1, E=210e9, nu", 1))
-refused("analysis needs a load", ["Scene/Analysis = preload", "one load"],
+refused("analysis needs a load", ["Scene/Analysis = preload", "a load"],
         analysis="preload", Loads="")
 finish()

@@ -72,6 +72,9 @@ namespace squeal
       unsigned int n_points        = 4;
       double covered_area = 0.;    ///< slave area over the master [m^2]
       double slave_area   = 0.;    ///< m^2
+      /// contact pairs merged into these operators (merge_mortar_operators);
+      /// slave_id and master_id are the first pair's
+      unsigned int n_pairs = 1;
 
       /** Number of slave nodes. */
       unsigned int
@@ -121,6 +124,17 @@ namespace squeal
                            unsigned int                 n_points = 4);
 
     /**
+     * The operators of several contact pairs as one: slave nodes, master
+     * nodes, D, M, gaps and slave masses concatenated pair by pair (master
+     * indices shifted), areas summed, the shortest slave face kept. A
+     * master node shared by two pairs appears once per pair, which the
+     * forces B^T z and gaps B u do not notice. One pair is returned as is.
+     * @throws std::runtime_error if @p pairs is empty.
+     */
+    MortarOperators
+    merge_mortar_operators(const std::vector<MortarOperators> &pairs);
+
+    /**
      * The largest relative tangential displacement of a slave node against
      * the master between @p u_reference and @p u (n_dofs each) [m]:
      * max_j |(t1_j, t2_j) . (D_jj du_j - sum_l M_jl du_l)| / D_jj over the
@@ -156,6 +170,8 @@ namespace squeal
      * problems thus build the segmentation once.
      * @param fraction > 0; 0 never rebuilds
      * @return whether the operators were rebuilt
+     * @throws std::runtime_error if a rebuild is due and @p op merges
+     * several pairs (large sliding is handled for one pair only)
      */
     bool
     refresh_segmentation(MortarOperators              &op,

@@ -30,6 +30,7 @@
 #include <squeal/contact/mortar.h>
 #include <squeal/physics/structural_model.h>
 
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,10 +42,36 @@ namespace squeal
     /**
      * The one contact pair of the model's scene.
      * @throws std::runtime_error if the scene has none or several (the
-     * preload and the braking run handle one).
+     * contact refinement of the preloaded CEA handles one).
      */
     const scene::ContactPair &
     single_pair(const scene::Scene &scene);
+
+    /**
+     * The sliding direction shared by all the scene's contact pairs (unit).
+     * @throws std::runtime_error if the scene has no pair, or two pairs
+     * slide along directions more than 1e-9 apart.
+     */
+    dealii::Tensor<1, 3>
+    common_sliding(const scene::Scene &scene);
+
+    /** The boundary ids of the slave faces of all the scene's pairs. */
+    std::set<dealii::types::boundary_id>
+    slave_ids(const scene::Scene &scene);
+
+    /**
+     * The dual mortar operators of all the scene's contact pairs, merged
+     * (merge_mortar_operators(); one pair: build_mortar_operators() itself),
+     * each pair's slave nodes and areas reported on @p pcout.
+     * @param model its scene's pairs, DoFs and mapping
+     * @param search_distance contact search reach [m]
+     * @param pcout where the report goes
+     * @throws std::runtime_error as build_mortar_operators().
+     */
+    MortarOperators
+    scene_mortar(const physics::StructuralModel &model,
+                 double                          search_distance,
+                 dealii::ConditionalOStream     &pcout);
 
     /**
      * The scene's structural stiffness K_s at the file's nominal point
@@ -77,11 +104,12 @@ namespace squeal
                               MPI_Comm                           comm);
 
     /**
-     * The load vector [N] of @p force [N] spread uniformly over the faces of
-     * the scene's load, along its direction (the TriboBrake: the support's
-     * top, pushing the pad towards the disc, -z), with @p constraints.
-     * @throws std::runtime_error if the scene has not exactly one load or
-     * its face set is empty.
+     * The load vector [N]: for each of the scene's loads, @p force [N]
+     * spread uniformly over its faces along its direction (the TriboBrake:
+     * the support's top, pushing the pad towards the disc, -z; two pads of
+     * a caliper: each pressed by @p force), with @p constraints.
+     * @throws std::runtime_error if the scene has no load or a load's face
+     * set is empty.
      */
     dealii::Vector<double>
     scene_load(const physics::StructuralModel          &model,

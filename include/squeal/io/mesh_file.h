@@ -11,8 +11,12 @@
  * unnamed group is called by its number); Abaqus/CalculiX `.inp` (a flat
  * input file: `*NODE`, `*ELEMENT` of types C3D8, C3D8R, C3D8I, C3D20 and
  * C3D20R, `*ELSET`, `*NSET`, `*SURFACE` of TYPE=ELEMENT, the GENERATE forms
- * included). Quadratic elements contribute their corner nodes; their
- * mid-side nodes are not used yet (the cells are trilinear). Bodies meshed
+ * included). Quadratic elements (C3D20, C3D20R) give their corner nodes
+ * to the cells and their mid-side nodes to the geometry: a curved element
+ * gets a manifold of its own (the 20-node serendipity map, manifold id
+ * 1000 + its coarse cell index) on its cell, faces and edges, so refinement
+ * and a higher-degree MappingQ follow the element's curvature. Gmsh's
+ * second-order hexahedra are not read (use first order, or .inp). Bodies meshed
  * separately stay separate: coincident nodes of two bodies are not merged.
  *
  * Write: the coarse mesh and its sets as an Abaqus/CalculiX `.inp` (C3D8,

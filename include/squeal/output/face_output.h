@@ -10,18 +10,27 @@
 
 #include <deal.II/numerics/data_out_faces.h>
 
+#include <set>
+#include <utility>
+
 namespace squeal
 {
   namespace output
   {
-    /** DataOutFaces over the boundary faces with id @p id only. */
+    /** DataOutFaces over the boundary faces with the given ids only. */
     class BoundaryFaceOutput : public dealii::DataOutFaces<3>
     {
     public:
       /** @param id the boundary id of the faces to write */
       explicit BoundaryFaceOutput(const dealii::types::boundary_id id)
+        : BoundaryFaceOutput(std::set<dealii::types::boundary_id>{id})
+      {}
+
+      /** @param ids the boundary ids of the faces to write (the slave faces
+       * of every contact pair) */
+      explicit BoundaryFaceOutput(std::set<dealii::types::boundary_id> ids)
         : dealii::DataOutFaces<3>(false)
-        , id(id)
+        , ids(std::move(ids))
       {}
 
       /** The first face with the boundary id (empty if none). */
@@ -46,12 +55,12 @@ namespace squeal
           if (cell->is_active())
             for (unsigned int f = start; f < cell->n_faces(); ++f)
               if (cell->face(f)->at_boundary() &&
-                  cell->face(f)->boundary_id() == id)
+                  ids.count(cell->face(f)->boundary_id()) > 0)
                 return {cell, f};
         return {};
       }
 
-      const dealii::types::boundary_id id;
+      const std::set<dealii::types::boundary_id> ids;
     };
   } // namespace output
 } // namespace squeal

@@ -36,8 +36,8 @@ namespace squeal
     /** A body: the cells of one material id, of one material. */
     struct Body
     {
-      std::string                name; ///< as in outputs (`disc`, `pad`)
-      dealii::types::material_id id = 0;
+      std::string                name;   ///< as in outputs (`disc`, `pad`)
+      dealii::types::material_id id = 0; ///< its cells' material id
       /// isotropic elastic constants [Pa, -, kg/m^3]
       parameters::Material material;
       /// the sweep parameter `pad modulus` scales this body's Young's
@@ -51,13 +51,11 @@ namespace squeal
       bool disc = false;
       /// disc only: the face whose axial motion names the modes
       dealii::types::boundary_id naming_face = 0;
-      /// disc only: centre [m], unit axis, unit reference direction
-      /// (theta = 0, where the pad sits), inner and outer radius [m]
-      dealii::Point<3>     centre;
-      dealii::Tensor<1, 3> axis;
-      dealii::Tensor<1, 3> reference;
-      double               inner_radius = 0.;
-      double               outer_radius = 0.;
+      dealii::Point<3>     centre;    ///< disc only: a point of its axis [m]
+      dealii::Tensor<1, 3> axis;      ///< disc only: unit axis
+      dealii::Tensor<1, 3> reference; ///< disc only: unit theta = 0 (the pad)
+      double               inner_radius = 0.; ///< disc only [m]
+      double               outer_radius = 0.; ///< disc only [m]
 
       /** Disc only: (r [m], theta [rad]) of @p x in the disc's frame. */
       std::pair<double, double>
@@ -67,13 +65,12 @@ namespace squeal
     /**
      * A contact pair: a slave face set pressed on a master face set that
      * slides under it. The linear friction coupling of the CEA integrates
-     * on the slave face's plane (unit @ref normal, in-plane axes
-     * @ref plane_axes); the master turns about @ref axis through
-     * @ref axis_point.
+     * on the slave face's plane (unit normal, in-plane axes plane_axes);
+     * the master turns about axis through axis_point.
      */
     struct ContactPair
     {
-      std::string                name;
+      std::string                name;       ///< as in logs and errors
       dealii::types::boundary_id slave  = 0; ///< pad side
       dealii::types::boundary_id master = 0; ///< disc side
       /// centre of the slave face [m]
@@ -88,9 +85,8 @@ namespace squeal
       /// unit sliding direction of the master under the slave's centre
       /// (the linear coupling's tangent, thesis eq. 3-1)
       dealii::Tensor<1, 3> sliding;
-      /// rotation axis of the master (unit) and a point on it [m]
-      dealii::Tensor<1, 3> axis;
-      dealii::Point<3>     axis_point;
+      dealii::Tensor<1, 3> axis;       ///< unit rotation axis of the master
+      dealii::Point<3>     axis_point; ///< a point of that axis [m]
       /// a length of the slave face [m] (its edge), for tolerances
       double size = 1.;
 
@@ -108,9 +104,10 @@ namespace squeal
     /** A face set held fixed in some displacement components. */
     struct Hold
     {
-      std::string                name;
-      dealii::types::boundary_id id = 0;
-      std::array<bool, 3>        components{{true, true, true}};
+      std::string                name;   ///< as in logs
+      dealii::types::boundary_id id = 0; ///< boundary id of its faces
+      /// held components x, y, z
+      std::array<bool, 3> components{{true, true, true}};
     };
 
     /**
@@ -120,7 +117,7 @@ namespace squeal
      */
     struct PointHold
     {
-      std::string      name;
+      std::string      name;          ///< as in logs
       dealii::Point<3> point;         ///< m
       unsigned int     component = 0; ///< 0, 1, 2
     };
@@ -128,8 +125,8 @@ namespace squeal
     /** A total force spread uniformly over a face set. */
     struct Load
     {
-      std::string                name;
-      dealii::types::boundary_id id = 0;
+      std::string                name;   ///< as in logs and errors
+      dealii::types::boundary_id id = 0; ///< boundary id of its faces
       /// unit direction of the force (its magnitude is the analysis')
       dealii::Tensor<1, 3> direction;
     };
@@ -143,8 +140,8 @@ namespace squeal
      */
     struct SpringSet
     {
-      std::string                name;
-      dealii::types::material_id body = 0;
+      std::string                name;     ///< as in logs and errors
+      dealii::types::material_id body = 0; ///< material id of the body
       std::vector<dealii::Point<3>>     stations;       ///< m
       std::vector<dealii::Tensor<1, 3>> station_normals; ///< unit, per station
       dealii::Tensor<1, 3>              direction;      ///< unit
@@ -156,7 +153,7 @@ namespace squeal
     /** A named point where results are recorded. */
     struct Probe
     {
-      std::string      name;
+      std::string      name;  ///< as in outputs
       dealii::Point<3> point; ///< m
     };
 
@@ -184,13 +181,13 @@ namespace squeal
       virtual NamedSets
       named_sets(const dealii::Triangulation<3> &tria) const = 0;
 
-      std::vector<Body>        bodies;
-      std::vector<ContactPair> contact_pairs;
-      std::vector<Hold>        holds;
-      std::vector<PointHold>   point_holds;
-      std::vector<Load>        loads;
-      std::vector<SpringSet>   springs;
-      std::vector<Probe>       probes;
+      std::vector<Body>        bodies;        ///< one per material id
+      std::vector<ContactPair> contact_pairs; ///< friction interfaces
+      std::vector<Hold>        holds;         ///< fixed faces
+      std::vector<PointHold>   point_holds;   ///< single held components
+      std::vector<Load>        loads;         ///< the analyses' normal force
+      std::vector<SpringSet>   springs;       ///< springs to ground
+      std::vector<Probe>       probes;        ///< named points
 
       /**
        * The body with material id @p id.
@@ -232,7 +229,7 @@ namespace squeal
 
     /**
      * Checks that @p scene has what Scene/Analysis @p analysis needs: the
-     * preload, the preloaded CEA and braking one contact pair and one load;
+     * preload, the preloaded CEA and braking a contact pair and a load;
      * braking a disc too when @p seeded (an initial perturbation).
      * @throws std::runtime_error naming the scene and what it lacks.
      */
