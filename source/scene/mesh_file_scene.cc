@@ -3,6 +3,8 @@
 // (pair planes, disc radii, spring face normals) derived from the mesh.
 
 #include <deal.II/base/utilities.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/numerics/rtree.h>
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria.h>
 
@@ -325,6 +327,70 @@ namespace squeal
               ", " + Utilities::to_string(x[1]) + ", " +
               Utilities::to_string(x[2]) +
               " m); add their cell set to the list");
+          }
+      }
+
+      // Overlapping bodies: a vertex, face centre or cell centre of one body
+      // inside a cell of another by more than 1 % of that cell (touching
+      // bodies, such as a pad on a disc, meet on each other's faces, at
+      // depth 0).
+      {
+        std::vector<std::set<int>> vertex_bodies(coarse.n_vertices());
+        for (unsigned int c = 0; c < cells.size(); ++c)
+          for (const auto v : cells[c]->vertex_indices())
+            vertex_bodies[cells[c]->vertex_index(v)].insert(owner[c]);
+        std::vector<std::pair<BoundingBox<3>, unsigned int>> boxes;
+        for (unsigned int c = 0; c < cells.size(); ++c)
+          boxes.emplace_back(cells[c]->bounding_box(), c);
+        const auto        tree = pack_rtree(boxes);
+        const MappingQ<3> q1(1);
+        // the points tested: every vertex (for the bodies that do not use
+        // it), every face centre and cell centre (for the other bodies)
+        const auto &vertices = coarse.get_vertices();
+        std::vector<std::pair<Point<3>, std::set<int>>> probes;
+        for (unsigned int v = 0; v < vertices.size(); ++v)
+          if (!vertex_bodies[v].empty())
+            probes.emplace_back(vertices[v], vertex_bodies[v]);
+        for (unsigned int c = 0; c < cells.size(); ++c)
+          {
+            probes.emplace_back(cells[c]->center(), std::set<int>{owner[c]});
+            for (const auto f : cells[c]->face_indices())
+              probes.emplace_back(cells[c]->face(f)->center(),
+                                  std::set<int>{owner[c]});
+          }
+        for (const auto &[x, own] : probes)
+          {
+            std::vector<std::pair<BoundingBox<3>, unsigned int>> near;
+            tree.query(boost::geometry::index::intersects(x),
+                       std::back_inserter(near));
+            for (const auto &[box, c] : near)
+              {
+                if (own.count(owner[c]) > 0)
+                  continue;
+                Point<3> unit;
+                try
+                  {
+                    unit = q1.transform_real_to_unit_cell(cells[c], x);
+                  }
+                catch (const Mapping<3>::ExcTransformationFailed &)
+                  {
+                    continue;
+                  }
+                double depth = 1.;
+                for (unsigned int d = 0; d < 3; ++d)
+                  depth = std::min({depth, unit[d], 1. - unit[d]});
+                if (depth > 0.01)
+                  throw std::runtime_error(
+                    description() + ": bodies '" + bodies[*own.begin()].name +
+                    "' and '" + bodies[owner[c]].name +
+                    "' overlap: a point of the first at (" +
+                    Utilities::to_string(x[0]) + ", " +
+                    Utilities::to_string(x[1]) + ", " +
+                    Utilities::to_string(x[2]) +
+                    ") m lies inside a cell of the second (" +
+                    Utilities::to_string(100. * depth, 3) +
+                    " % of it deep); remesh or move the bodies apart");
+              }
           }
       }
 

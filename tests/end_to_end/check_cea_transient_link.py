@@ -19,7 +19,7 @@ import csv
 import os
 import sys
 
-from checks import check, finish, run_squeal
+from checks import check, finish, full_solver_point, run_squeal
 
 squeal, prm, work = sys.argv[1:4]
 prm = os.path.abspath(prm)
@@ -39,18 +39,7 @@ end
 subsection Interface
   set Friction coefficient = {mu}
 end
-subsection Eigensolver
-  set Method = full
-  set Minimum frequency = 900
-  set Maximum frequency = 20000
-end
-subsection Sweep
-  set First parameter = pad modulus
-  set First values = 25.1e9
-  set Second parameter = friction coefficient
-  set Second values = {mu}
-end
-""")
+""" + full_solver_point(mu, 20000, 25.1e9, 900))
     with open(os.path.join(out, "eigenvalues.csv")) as f:
         rows = list(csv.DictReader(f))
     return [(float(r["freq_Hz"]), float(r["re_per_s"])) for r in rows

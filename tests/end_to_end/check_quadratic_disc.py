@@ -13,7 +13,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, finish, run_squeal  # noqa: E402
+from checks import check, finish, full_solver_point, run_squeal  # noqa: E402
 
 squeal, work = sys.argv[1], sys.argv[2]
 os.makedirs(work, exist_ok=True)
@@ -78,24 +78,9 @@ def write_disc(path, quadratic, ns=24, nr=4, nl=1):
 
 
 with open("base.prm", "w") as f:
-    f.write("""subsection Mesh
-  set Finite element degree = 3
-end
-subsection Eigensolver
-  set Method = full
-  set Maximum frequency = 8000
-end
-subsection Damping
-  set Alpha = 0
-  set Beta = 0
-end
-subsection Sweep
-  set First parameter = pad modulus
-  set First values = 25e9
-  set Second parameter = friction coefficient
-  set Second values = 0
-end
-""")
+    f.write("subsection Mesh\n  set Finite element degree = 3\nend\n"
+            "subsection Damping\n  set Alpha = 0\n  set Beta = 0\nend\n" +
+            full_solver_point(0, 8000))
 
 errors = {}
 for kind, quadratic in (("C3D20R", True), ("C3D8", False)):

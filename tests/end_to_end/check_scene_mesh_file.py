@@ -12,8 +12,8 @@ built-in scene:
 and the scene-level checks of a mesh-file scene (--validate): a missing set
 (the error lists the file's sets), cells in no body, a free-floating body
 (named), a master set out of reach, a slave set that is not plane, an
-unknown key, an analysis the scene cannot run; --export-mesh refuses to
-overwrite.
+unknown key, an analysis the scene cannot run, overlapping bodies;
+--export-mesh refuses to overwrite.
 Usage: check_scene_mesh_file.py SQUEAL BASE_PRM WORK_DIR"""
 import csv
 import os
@@ -164,4 +164,31 @@ refused("unknown key", ["item 'disc'", "young=1", "set, E, nu, rho"],
         Bodies=SCENE["Bodies"].replace("E=210e9, nu", "young=1, E=210e9, nu", 1))
 refused("analysis needs a load", ["Scene/Analysis = preload", "a load"],
         analysis="preload", Loads="")
+
+# Overlapping bodies: two unit cubes, the second shifted by half its edge.
+with open("overlap.inp", "w") as f:
+    f.write("*NODE\n")
+    n = 0
+    for shift in (0., 0.5):
+        for z in (0., 1.):
+            for y in (0., 1.):
+                for x in (0., 1.):
+                    n += 1
+                    f.write(f"{n}, {x + shift}, {y}, {z}\n")
+    f.write("*ELEMENT, TYPE=C3D8, ELSET=A\n1, 1, 2, 4, 3, 5, 6, 8, 7\n")
+    f.write("*ELEMENT, TYPE=C3D8, ELSET=B\n2, 9, 10, 12, 11, 13, 14, 16, 15\n")
+with open("overlap.prm", "w") as f:
+    f.write(f"""subsection Scene
+  set Type = mesh file
+  subsection Mesh file
+    set File = {os.path.abspath("overlap.inp")}
+    set Bodies = a: set=A, E=1e9, nu=0.3, rho=1000; b: set=B, E=1e9, nu=0.3, rho=1000
+  end
+end
+""")
+r = subprocess.run([squeal, "--validate", "overlap.prm"], capture_output=True,
+                   text=True)
+check("overlapping bodies", r.returncode != 0 and
+      ("bodies 'b' and 'a' overlap" in r.stderr or
+       "bodies 'a' and 'b' overlap" in r.stderr), r.stderr or r.stdout)
 finish()

@@ -18,7 +18,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, finish, run_squeal  # noqa: E402
+from checks import check, finish, full_solver_point, run_squeal  # noqa: E402
 
 squeal, work = sys.argv[1], sys.argv[2]
 os.makedirs(work, exist_ok=True)
@@ -157,17 +157,7 @@ check("the two pads mirror each other",
       f"the peak pressure {peak:.3e} Pa", show=True)
 
 # CEA, both pair orders.
-cea = """subsection Eigensolver
-  set Method = full
-  set Maximum frequency = 6000
-end
-subsection Sweep
-  set First parameter = pad modulus
-  set First values = 25e9
-  set Second parameter = friction coefficient
-  set Second values = 0.5
-end
-"""
+cea = full_solver_point(0.5, 6000)
 a, _ = run_squeal(squeal, "base.prm", "cea", prm("cea", extra=cea))
 b, _ = run_squeal(squeal, "base.prm", "cea_swapped",
                   prm("cea", PAIRS[::-1], extra=cea))

@@ -43,6 +43,24 @@ def run_squeal(squeal, base_prm, name, extra="", mpi=0):
     return out, r.stdout
 
 
+def full_solver_point(mu=0.5, f_max=None, e_pad=25e9, f_min=None):
+    """Parameter-file text: the full solver at the single sweep point
+    E_pad = E_PAD [Pa] and MU (default: thesis Table 3.1, 25 GPa and 0.5),
+    in the band F_MIN-F_MAX Hz where given."""
+    band = (f"  set Minimum frequency = {f_min}\n" if f_min else "") + \
+        (f"  set Maximum frequency = {f_max}\n" if f_max else "")
+    return f"""subsection Eigensolver
+  set Method = full
+{band}end
+subsection Sweep
+  set First parameter = pad modulus
+  set First values = {e_pad:g}
+  set Second parameter = friction coefficient
+  set Second values = {mu}
+end
+"""
+
+
 def run_table_point(squeal, base_prm, name, extra, mpi=0):
     """Writes NAME.prm (include BASE_PRM, then EXTRA, then the full solver
     at the single point E_pad = 25 GPa, mu = 0.5 of thesis Table 3.1 and
@@ -53,16 +71,7 @@ def run_table_point(squeal, base_prm, name, extra, mpi=0):
     shutil.rmtree(out, ignore_errors=True)
     with open(name + ".prm", "w") as f:
         f.write(f"""include {base_prm}
-{extra}subsection Eigensolver
-  set Method = full
-end
-subsection Sweep
-  set First parameter = pad modulus
-  set First values = 25e9
-  set Second parameter = friction coefficient
-  set Second values = 0.5
-end
-subsection Output
+{extra}{full_solver_point()}subsection Output
   set Directory = {out}
   set Mode shapes = none
 end

@@ -23,7 +23,10 @@
  * The constructor checks the scene against the mesh, and every failure is
  * one std::runtime_error naming the entry, the item and the set: a missing
  * set or body (the error lists those that exist), a cell in no body or in
- * two, a face in two face sets the scene uses, a body nothing holds (no
+ * two, overlapping bodies (a vertex, face or cell centre of one more than
+ * 1 % of a cell deep inside a cell of another), a face in two face sets
+ * the scene uses, a
+ * body nothing holds (no
  * hold, point hold, spring, contact pair or shared node connects it to the
  * ground: named), a slave face set that is not plane, a master face set
  * that does not face the slave or lies beyond Preload/Search distance, a
