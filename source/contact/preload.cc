@@ -28,6 +28,28 @@ namespace squeal
     using namespace dealii;
     namespace fs = std::filesystem;
 
+    namespace
+    {
+      // The DoF of the point hold's component nearest its point (the
+      // lowest such index among equally near ones).
+      types::global_dof_index
+      nearest_dof(const std::vector<Point<3>>     &points,
+                  const std::vector<unsigned int> &component,
+                  const scene::PointHold          &hold)
+      {
+        types::global_dof_index held = numbers::invalid_dof_index;
+        double                  best = 1e300;
+        for (types::global_dof_index d = 0; d < points.size(); ++d)
+          if (component[d] == hold.component &&
+              points[d].distance(hold.point) < best)
+            {
+              best = points[d].distance(hold.point);
+              held = d;
+            }
+        return held;
+      }
+    } // namespace
+
     const scene::ContactPair &
     single_pair(const scene::Scene &scene)
     {
@@ -102,22 +124,11 @@ namespace squeal
       // The scene's point holds: one component of the node nearest each
       // point (the TriboBrake's loading arm holds the support top's centre
       // along the radius: a sliding contact does not hold it there).
-      std::map<types::global_dof_index, Point<3>> support_points;
-      DoFTools::map_dofs_to_support_points(model.mapping, model.dof_handler,
-                                           support_points);
-      const std::vector<unsigned int> component =
-        physics::dof_support_points(model).second;
+      const auto [points, component] = physics::dof_support_points(model);
       types::global_dof_index held = numbers::invalid_dof_index;
       for (const scene::PointHold &hold : model.scene->point_holds)
         {
-          double best = 1e300;
-          for (const auto &[d, x] : support_points)
-            if (component[d] == hold.component &&
-                x.distance(hold.point) < best)
-              {
-                best = x.distance(hold.point);
-                held = d;
-              }
+          held = nearest_dof(points, component, hold);
           if (held == numbers::invalid_dof_index ||
               constraints.is_constrained(held))
             continue;
@@ -133,7 +144,7 @@ namespace squeal
         }
       constraints.close();
       return {held, held == numbers::invalid_dof_index ? Point<3>() :
-                                                          support_points[held]};
+                                                          points[held]};
     }
 
     Point<3>
@@ -164,14 +175,7 @@ namespace squeal
       types::global_dof_index held = 0;
       for (const scene::PointHold &hold : model.scene->point_holds)
         {
-          double best = 1e300;
-          for (types::global_dof_index d = 0; d < n; ++d)
-            if (component[d] == hold.component &&
-                points[d].distance(hold.point) < best)
-              {
-                best = points[d].distance(hold.point);
-                held = d;
-              }
+          held = nearest_dof(points, component, hold);
           if (constraints.is_constrained(held))
             continue;
           constraints.add_line(held);

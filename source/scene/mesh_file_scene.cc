@@ -28,13 +28,7 @@ namespace squeal
     {
       const std::string prefix = "Scene/Mesh file/";
 
-      std::string
-      trim(const std::string &s)
-      {
-        const auto b = s.find_first_not_of(" \t\r\n");
-        const auto e = s.find_last_not_of(" \t\r\n");
-        return b == std::string::npos ? "" : s.substr(b, e - b + 1);
-      }
+      using Utilities::trim;
 
       // One item of a list: `name: key=value, key=value`.
       struct Item
@@ -419,9 +413,6 @@ namespace squeal
         face_ids.emplace(name, id);
         return id;
       };
-      const auto faces_of = [&](const std::string &name) {
-        return sets.faces(name);
-      };
 
       for (unsigned int b = 0; b < bodies.size(); ++b)
         if (bodies[b].disc)
@@ -453,8 +444,8 @@ namespace squeal
           if (pair.slave == pair.master)
             throw std::runtime_error(item.where() +
                                      ": slave and master are one face set");
-          const auto &slave  = faces_of(item.text("slave"));
-          const auto &master = faces_of(item.text("master"));
+          const auto &slave  = sets.faces(item.text("slave"));
+          const auto &master = sets.faces(item.text("master"));
           double       area  = 0.;
           Tensor<1, 3> weighted_centre, outward;
           for (const auto &[c, f] : slave)
