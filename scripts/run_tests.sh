@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# Quick start, command 2: set up, build and run the ctest verification suite.
+# Quick start, command 2: set up, build, check the C++ formatting and run the
+# ctest verification suite.
 # Tests labelled "long" are left out; run them with: cd build && ctest -L long
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$here/scripts/setup.sh"
+# every C++ file follows .clang-format (deal.II's style)
+"$here/scripts/check_format.sh"
 cd "$here/build"
 # OpenMPI refuses to start as root unless told; CI runs as root.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

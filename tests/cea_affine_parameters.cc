@@ -17,12 +17,12 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  ConditionalOStream quiet(std::cout, false);
+  ConditionalOStream               quiet(std::cout, false);
 
-  parameters::AllParameters a      = test_tools::coarse_tribobrake(24, 3, 1, 2, 1);
+  parameters::AllParameters a = test_tools::coarse_tribobrake(24, 3, 1, 2, 1);
   a.interface.friction_coefficient = 0.3;
 
-  parameters::AllParameters b = a;
+  parameters::AllParameters b      = a;
   b.materials.pad.youngs_modulus   = 3.7e9;
   b.interface.friction_coefficient = 0.65;
   b.interface.normal_stiffness     = 9.1e11;
@@ -31,14 +31,16 @@ main(int argc, char **argv)
   b.damping.alpha                  = 15.;
   b.damping.beta                   = 3e-7;
 
-  physics::StructuralModel model_a(a, MPI_COMM_WORLD), model_b(b, MPI_COMM_WORLD);
+  physics::StructuralModel model_a(a, MPI_COMM_WORLD),
+    model_b(b, MPI_COMM_WORLD);
   model_a.setup_and_assemble(quiet);
   model_b.setup_and_assemble(quiet);
-  const auto                    parts_a = model_a.parts(), parts_b = model_b.parts();
-  const parameters::ScalarPoint p       = b.nominal_point();
+  const auto parts_a = model_a.parts(), parts_b = model_b.parts();
+  const parameters::ScalarPoint p = b.nominal_point();
 
-  using Assemble = void (physics::MatrixParts::*)(const parameters::ScalarPoint &,
-                                                  physics::PETScMatrix &) const;
+  using Assemble =
+    void (physics::MatrixParts::*)(const parameters::ScalarPoint &,
+                                   physics::PETScMatrix &) const;
   for (const auto &[name, f] :
        {std::pair<std::string, Assemble>{"M", &physics::MatrixParts::mass},
         {"K", &physics::MatrixParts::stiffness},
@@ -52,7 +54,10 @@ main(int argc, char **argv)
       from_parts.add(-1., direct);
       test_tools::check(name + " recombined equals " + name +
                           " assembled at the new values (1e-12)",
-                        from_parts.frobenius_norm() / norm, 0., 1e-12, 1.);
+                        from_parts.frobenius_norm() / norm,
+                        0.,
+                        1e-12,
+                        1.);
     }
   return test_tools::finish();
 }

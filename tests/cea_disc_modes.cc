@@ -28,31 +28,39 @@ namespace
   };
   // verification.md A3 (Hz)
   const Reference table[] = {
-    {"(0,0)", 1629.8, 1},   {"(0,1)", 1638.5, 2},   {"(0,2)", 1839.8, 2},
-    {"(0,3)", 2557.6, 2},   {"(0,4)", 3853.5, 2},   {"(0,5)", 5611.7, 2},
-    {"(0,6)", 7731.5, 2},   {"(0,7)", 10146.9, 2},  {"(0,8)", 12813.0, 2},
-    {"(0,9)", 15696.4, 2},  {"(0,10)", 18770.4, 2}, {"(1,0)", 9669.8, 1},
-    {"(1,1)", 9924.2, 2},   {"(1,2)", 10703.9, 2},  {"(1,3)", 12041.6, 2},
-    {"(1,4)", 13954.6, 2},  {"(1,5)", 16421.6, 2},  {"(1,6)", 19380.9, 2},
-    {"in-plane n=0", 6303.3, 1}, {"in-plane n=1", 9515.5, 2},
+    {"(0,0)", 1629.8, 1},         {"(0,1)", 1638.5, 2},
+    {"(0,2)", 1839.8, 2},         {"(0,3)", 2557.6, 2},
+    {"(0,4)", 3853.5, 2},         {"(0,5)", 5611.7, 2},
+    {"(0,6)", 7731.5, 2},         {"(0,7)", 10146.9, 2},
+    {"(0,8)", 12813.0, 2},        {"(0,9)", 15696.4, 2},
+    {"(0,10)", 18770.4, 2},       {"(1,0)", 9669.8, 1},
+    {"(1,1)", 9924.2, 2},         {"(1,2)", 10703.9, 2},
+    {"(1,3)", 12041.6, 2},        {"(1,4)", 13954.6, 2},
+    {"(1,5)", 16421.6, 2},        {"(1,6)", 19380.9, 2},
+    {"in-plane n=0", 6303.3, 1},  {"in-plane n=1", 9515.5, 2},
     {"in-plane n=2", 14503.4, 2}, {"in-plane n=3", 17988.6, 2}};
 
   std::vector<std::complex<double>>
-  solve(const parameters::AllParameters &prm, const double alpha,
-        const double beta, physics::StructuralModel &model)
+  solve(const parameters::AllParameters &prm,
+        const double                     alpha,
+        const double                     beta,
+        physics::StructuralModel        &model)
   {
     ConditionalOStream quiet(std::cout, false);
     model.setup_and_assemble(quiet);
-    eigen::BandOptions band{prm.eigensolver.f_min, prm.eigensolver.f_max,
-                            100., 1e-10, 60};
+    eigen::BandOptions band{
+      prm.eigensolver.f_min, prm.eigensolver.f_max, 100., 1e-10, 60};
     std::vector<std::complex<double>> l;
-    for (const auto &p :
-         eigen::solve_full(model.parts(),
-                           {prm.materials.pad.youngs_modulus, 0.,
-                            prm.interface.normal_stiffness,
-                            prm.springs.stiffness,
-                            prm.materials.support.density, alpha, beta},
-                           band, quiet))
+    for (const auto &p : eigen::solve_full(model.parts(),
+                                           {prm.materials.pad.youngs_modulus,
+                                            0.,
+                                            prm.interface.normal_stiffness,
+                                            prm.springs.stiffness,
+                                            prm.materials.support.density,
+                                            alpha,
+                                            beta},
+                                           band,
+                                           quiet))
       l.push_back(p.lambda);
     return l;
   }
@@ -75,33 +83,40 @@ main(int argc, char **argv)
     for (const auto &r : table)
       for (unsigned int k = 0; k < r.multiplicity; ++k)
         expanded.emplace_back(r.f, &r);
-    std::sort(expanded.begin(), expanded.end(),
+    std::sort(expanded.begin(),
+              expanded.end(),
               [](const auto &a, const auto &b) { return a.first < b.first; });
     std::vector<double> f;
     for (const auto &x : l)
       f.push_back(x.imag() / (2 * M_PI));
     check("A3 modes below 20 kHz at least as many as listed",
-          std::min(f.size(), expanded.size()), expanded.size(), 0);
+          std::min(f.size(), expanded.size()),
+          expanded.size(),
+          0);
     for (unsigned int k = 0; k < std::min(f.size(), expanded.size()); ++k)
       {
-        const Reference &r = *expanded[k].second;
-        const bool second = k > 0 && expanded[k - 1].second == &r;
+        const Reference &r      = *expanded[k].second;
+        const bool       second = k > 0 && expanded[k - 1].second == &r;
         check(std::string("A3 ") + r.name + (second ? " second member" : "") +
                 " within 0.5 %",
-              f[k], r.f, 5e-3);
+              f[k],
+              r.f,
+              5e-3);
         if (second)
           check(std::string("A4 ") + r.name + " doublet members equal to 1e-6",
-                f[k], f[k - 1], 1e-6);
+                f[k],
+                f[k - 1],
+                1e-6);
       }
   }
   {
     // A1 on a small model: a coarse linear disc, strong damping.
-    parameters::AllParameters small = prm;
+    parameters::AllParameters small     = prm;
     small.mesh.fe_degree                = 1;
     small.mesh.disc_cells_circumference = 16;
     small.mesh.disc_cells_radial        = 3;
     small.mesh.disc_cells_thickness     = 1;
-    const double alpha = 100., beta = 1e-6;
+    const double             alpha = 100., beta = 1e-6;
     physics::StructuralModel undamped_model(small, MPI_COMM_WORLD),
       damped_model(small, MPI_COMM_WORLD);
     const auto w = solve(small, 0., 0., undamped_model);
@@ -120,9 +135,13 @@ main(int argc, char **argv)
         n_bad += err > 1e-8;
       }
     check("A1 every eigenvalue matches the Rayleigh formula to 1e-8",
-          n_bad, 0, 0);
-    check("A1 at least 10 modes in the band", std::min<double>(l.size(), 10),
-          10, 0);
+          n_bad,
+          0,
+          0);
+    check("A1 at least 10 modes in the band",
+          std::min<double>(l.size(), 10),
+          10,
+          0);
   }
   return test_tools::finish();
 }

@@ -36,8 +36,8 @@ namespace test_tools
         std::cout << name << ": " << (ok ? "ok" : "FAILED");
         if (!ok)
           std::cout << std::setprecision(12) << " (value " << value
-                    << ", reference " << reference << ", error " << err
-                    << " > " << tolerance << ")";
+                    << ", reference " << reference << ", error " << err << " > "
+                    << tolerance << ")";
         std::cout << std::endl;
       }
   }

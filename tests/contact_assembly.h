@@ -33,12 +33,12 @@ struct TractionLoad
  */
 inline void
 assemble_elastic_system(
-  const dealii::DoFHandler<3>                                     &dofs,
-  const dealii::Mapping<3>                                        &mapping,
-  const dealii::AffineConstraints<double>                         &constraints,
-  const std::function<std::pair<double, double>(unsigned int)>    &E_nu,
-  const std::vector<TractionLoad>                                 &loads,
-  dealii::SparseMatrix<double>                                    &K,
+  const dealii::DoFHandler<3>                                  &dofs,
+  const dealii::Mapping<3>                                     &mapping,
+  const dealii::AffineConstraints<double>                      &constraints,
+  const std::function<std::pair<double, double>(unsigned int)> &E_nu,
+  const std::vector<TractionLoad>                              &loads,
+  dealii::SparseMatrix<double>                                 &K,
   dealii::SparseMatrix<double> *K_free = nullptr,
   dealii::Vector<double>       *f_free = nullptr)
 {
@@ -46,12 +46,14 @@ assemble_elastic_system(
   const FiniteElement<3> &fe = dofs.get_fe();
   const QGauss<3>         q(fe.degree + 1);
   const QGauss<2>         qf(fe.degree + 1);
-  FEValues<3>             fv(mapping, fe, q,
+  FEValues<3>             fv(mapping,
+                 fe,
+                 q,
                  update_values | update_gradients | update_JxW_values);
-  FEFaceValues<3>         ffv(mapping, fe, qf, update_values | update_JxW_values);
-  const unsigned int      n = fe.n_dofs_per_cell();
-  FullMatrix<double>      ck(n, n), cm(n, n), none(n, n);
-  std::vector<Vector<double>> cf(loads.size(), Vector<double>(n));
+  FEFaceValues<3>    ffv(mapping, fe, qf, update_values | update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  FullMatrix<double> ck(n, n), cm(n, n), none(n, n);
+  std::vector<Vector<double>>          cf(loads.size(), Vector<double>(n));
   std::vector<types::global_dof_index> ids(n);
   for (const auto &cell : dofs.active_cell_iterators())
     {
@@ -78,8 +80,8 @@ assemble_elastic_system(
         }
       cell->get_dof_indices(ids);
       for (unsigned int l = 0; l < loads.size(); ++l)
-        constraints.distribute_local_to_global(l == 0 ? ck : none, cf[l], ids,
-                                               K, *loads[l].f);
+        constraints.distribute_local_to_global(
+          l == 0 ? ck : none, cf[l], ids, K, *loads[l].f);
       if (loads.empty())
         constraints.distribute_local_to_global(ck, ids, K);
       if (K_free)

@@ -49,9 +49,17 @@ struct CylinderOnFlat
   std::vector<double>               dy; ///< cell sizes from y = 0 outwards
   double                            h0;
 
-  CylinderOnFlat(double R, double E, double nu, double w, double H, double h0,
-                 bool half, double P, double Q, bool rigid_top = false,
-                 bool hold_top = false)
+  CylinderOnFlat(double R,
+                 double E,
+                 double nu,
+                 double w,
+                 double H,
+                 double h0,
+                 bool   half,
+                 double P,
+                 double Q,
+                 bool   rigid_top = false,
+                 bool   hold_top  = false)
     : dofs(tria)
     , h0(h0)
   {
@@ -73,17 +81,23 @@ struct CylinderOnFlat
     else
       span.insert(span.end(), dy.begin(), dy.end());
     Triangulation<3> body, flat;
-    GridGenerator::subdivided_hyper_rectangle(
-      body, {std::vector<double>{h0}, span, dz},
-      Point<3>(0, half ? 0. : -w, 0), Point<3>(h0, w, H));
+    GridGenerator::subdivided_hyper_rectangle(body,
+                                              {std::vector<double>{h0},
+                                               span,
+                                               dz},
+                                              Point<3>(0, half ? 0. : -w, 0),
+                                              Point<3>(h0, w, H));
     GridTools::transform(
       [&](const Point<3> &x) {
         const double zb = R - std::sqrt(R * R - x[1] * x[1]);
         return Point<3>(x[0], x[1], zb + x[2] * (H - zb) / H);
       },
       body);
-    GridGenerator::subdivided_hyper_rectangle(flat, {1u, half ? 8u : 16u, 2u},
-                                              Point<3>(0, half ? -0.5 : -w - 0.5, -2),
+    GridGenerator::subdivided_hyper_rectangle(flat,
+                                              {1u, half ? 8u : 16u, 2u},
+                                              Point<3>(0,
+                                                       half ? -0.5 : -w - 0.5,
+                                                       -2),
                                               Point<3>(h0, w + 0.5, 0));
     GridGenerator::merge_triangulations(body, flat, tria, 0.);
     for (const auto &cell : tria.active_cell_iterators())
@@ -114,18 +128,23 @@ struct CylinderOnFlat
       }
     dofs.distribute_dofs(fe);
     const Functions::ZeroFunction<3> zero(3);
-    VectorTools::interpolate_boundary_values(mapping, dofs, 3, zero, constraints,
-                                             ComponentMask({true, false, false}));
+    VectorTools::interpolate_boundary_values(
+      mapping, dofs, 3, zero, constraints, ComponentMask({true, false, false}));
     if (half)
-      VectorTools::interpolate_boundary_values(mapping, dofs, 4, zero,
+      VectorTools::interpolate_boundary_values(mapping,
+                                               dofs,
+                                               4,
+                                               zero,
                                                constraints,
-                                               ComponentMask({false, true, false}));
-    VectorTools::interpolate_boundary_values(mapping, dofs, 2, zero, constraints);
+                                               ComponentMask(
+                                                 {false, true, false}));
+    VectorTools::interpolate_boundary_values(
+      mapping, dofs, 2, zero, constraints);
     if (rigid_top)
       {
         // u_y and u_z of every top node equal those of the first one
         std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
-        types::global_dof_index              lead[3] = {numbers::invalid_dof_index,
+        types::global_dof_index lead[3] = {numbers::invalid_dof_index,
                                            numbers::invalid_dof_index,
                                            numbers::invalid_dof_index};
         for (const auto &cell : dofs.active_cell_iterators())
@@ -168,11 +187,12 @@ struct CylinderOnFlat
     pressing[2] = -(half ? 0.5 * P : P) / top;
     pulling[1]  = Q / top;
     assemble_elastic_system(
-      dofs, mapping, constraints,
-      [&](unsigned int m) {
-        return std::make_pair(m == 0 ? E : 1e6 * E, nu);
-      },
-      {{1, pressing, &f_normal}, {1, pulling, &f_tangential}}, K);
+      dofs,
+      mapping,
+      constraints,
+      [&](unsigned int m) { return std::make_pair(m == 0 ? E : 1e6 * E, nu); },
+      {{1, pressing, &f_normal}, {1, pulling, &f_tangential}},
+      K);
   }
 
   /** Size of the cell that contains y > 0 in the graded direction. */

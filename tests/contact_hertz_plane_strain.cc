@@ -17,10 +17,10 @@
 #include <squeal/contact/contact_solver.h>
 #include <squeal/contact/mortar.h>
 
-#include <sstream>
-
 #include "check.h"
 #include "contact_cylinder.h"
+
+#include <sstream>
 
 using namespace dealii;
 using namespace squeal::contact;
@@ -31,7 +31,7 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const double R = 8., p = 0.625, P = 2. * R * p, E = 200., nu = 0.3;
-  const double E_star = E / (1. - nu * nu);
+  const double E_star  = E / (1. - nu * nu);
   const double b_exact = std::sqrt(4. * P * R / (M_PI * E_star)),
                p0      = 2. * P / (M_PI * b_exact);
   check("Hertz half-width b = 0.6808", b_exact, 0.6808, 1e-4);
@@ -45,15 +45,15 @@ main(int argc, char **argv)
   // covers degree 2.
   for (const double h0 : {0.16, 0.08, 0.04})
     {
-      CylinderOnFlat c(R, E, nu, 6., 6., h0, true, P, 0.);
+      CylinderOnFlat        c(R, E, nu, 6., 6., h0, true, P, 0.);
       const MortarOperators op =
         build_mortar_operators(c.dofs, c.mapping, 10, 11, 1.0);
       std::ostringstream    log;
       const ContactSolution s = solve_static_contact(
         c.K, c.f_normal, c.constraints, op, ContactSettings(), &log);
-      test_tools::verbose() << "h0 " << h0 << ", " << c.dofs.n_dofs()
-                            << " DoFs:\n"
-                            << log.str();
+      test_tools::verbose()
+        << "h0 " << h0 << ", " << c.dofs.n_dofs() << " DoFs:\n"
+        << log.str();
       double p_max = 0., z_max = 0., b_found = 0., vertical = 0.;
       for (unsigned int j = 0; j < op.n_slave(); ++j)
         {
@@ -66,21 +66,28 @@ main(int argc, char **argv)
             b_found = std::max(b_found, op.slave_points[j][1]);
         }
       const double h_at_b = c.cell_size_at(b_exact);
-      test_tools::verbose() << "  p_max " << p_max << ", largest multiplier "
-                            << z_max << " (p0 " << p0 << "), half-width "
-                            << b_found << " (b " << b_exact << ", element "
-                            << h_at_b << ")" << std::endl;
+      test_tools::verbose()
+        << "  p_max " << p_max << ", largest multiplier " << z_max << " (p0 "
+        << p0 << "), half-width " << b_found << " (b " << b_exact
+        << ", element " << h_at_b << ")" << std::endl;
       const std::string name = "h0 = " + std::to_string(h0).substr(0, 4) + ": ";
       if (h0 < 0.05)
         {
           check(name + "peak pressure within 3 % of p0", p_max, p0, 0.03);
-          check(name + "half-width within one element of b", b_found,
-                b_exact, 1., h_at_b);
+          check(name + "half-width within one element of b",
+                b_found,
+                b_exact,
+                1.,
+                h_at_b);
         }
       check(name + "equilibrium: vertical contact force = P / 2 per length",
-            -vertical / h0, 0.5 * P, 1e-8);
+            -vertical / h0,
+            0.5 * P,
+            1e-8);
       check(name + "active set settles within 12 iterations",
-            std::min<double>(s.history.size(), 12.), s.history.size(), 0.);
+            std::min<double>(s.history.size(), 12.),
+            s.history.size(),
+            0.);
     }
   return test_tools::finish();
 }

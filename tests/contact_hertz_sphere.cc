@@ -26,11 +26,11 @@
 #include <squeal/contact/mortar.h>
 #include <squeal/physics/structural_model.h>
 
-#include <cmath>
-#include <sstream>
-
 #include "check.h"
 #include "contact_assembly.h"
+
+#include <cmath>
+#include <sstream>
 
 using namespace dealii;
 using namespace squeal::contact;
@@ -40,12 +40,12 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const double R = 8., F = 12.5, E = 200., nu = 0.3;
-  const double E_star = E / (1. - nu * nu);
+  const double                     R = 8., F = 12.5, E = 200., nu = 0.3;
+  const double                     E_star = E / (1. - nu * nu);
   const double a_exact = std::cbrt(3. * F * R / (4. * E_star)),
                p0      = 3. * F / (2. * M_PI * a_exact * a_exact);
 
-  const double w = 4., H = 4., h0 = 0.07;
+  const double        w = 4., H = 4., h0 = 0.07;
   std::vector<double> dxy, dz;
   for (double y = 0., h = h0; y < w - 1e-9; h *= 1.18)
     {
@@ -58,7 +58,8 @@ main(int argc, char **argv)
       z += dz.back();
     }
   Triangulation<3> body, flat, tria;
-  GridGenerator::subdivided_hyper_rectangle(body, {dxy, dxy, dz},
+  GridGenerator::subdivided_hyper_rectangle(body,
+                                            {dxy, dxy, dz},
                                             Point<3>(0, 0, 0),
                                             Point<3>(w, w, H));
   GridTools::transform(
@@ -67,7 +68,8 @@ main(int argc, char **argv)
       return Point<3>(x[0], x[1], zb + x[2] * (H - zb) / H);
     },
     body);
-  GridGenerator::subdivided_hyper_rectangle(flat, {6u, 6u, 2u},
+  GridGenerator::subdivided_hyper_rectangle(flat,
+                                            {6u, 6u, 2u},
                                             Point<3>(-0.5, -0.5, -2),
                                             Point<3>(w + 0.5, w + 0.5, 0));
   GridGenerator::merge_triangulations(body, flat, tria, 0.);
@@ -78,7 +80,7 @@ main(int argc, char **argv)
       for (const auto f : cell->face_indices())
         if (cell->face(f)->at_boundary())
           {
-            const Point<3> c  = cell->face(f)->center();
+            const Point<3>     c  = cell->face(f)->center();
             types::boundary_id id = 6;
             if (up && std::abs(c[2] - H) < 1e-12)
               id = 1; // loaded top
@@ -86,8 +88,8 @@ main(int argc, char **argv)
               id = 3; // symmetry: u_x = 0
             else if (up && std::abs(c[1]) < 1e-12)
               id = 4; // symmetry: u_y = 0
-            else if (up && (std::abs(c[0] - w) < 1e-12 ||
-                            std::abs(c[1] - w) < 1e-12))
+            else if (up &&
+                     (std::abs(c[0] - w) < 1e-12 || std::abs(c[1] - w) < 1e-12))
               id = 5; // free sides
             else if (up)
               id = 10; // spherical bottom: slave
@@ -106,10 +108,10 @@ main(int argc, char **argv)
   dofs.distribute_dofs(fe);
   AffineConstraints<double>        constraints;
   const Functions::ZeroFunction<3> zero(3);
-  VectorTools::interpolate_boundary_values(mapping, dofs, 3, zero, constraints,
-                                           ComponentMask({true, false, false}));
-  VectorTools::interpolate_boundary_values(mapping, dofs, 4, zero, constraints,
-                                           ComponentMask({false, true, false}));
+  VectorTools::interpolate_boundary_values(
+    mapping, dofs, 3, zero, constraints, ComponentMask({true, false, false}));
+  VectorTools::interpolate_boundary_values(
+    mapping, dofs, 4, zero, constraints, ComponentMask({false, true, false}));
   VectorTools::interpolate_boundary_values(mapping, dofs, 2, zero, constraints);
   constraints.close();
   DynamicSparsityPattern dsp(dofs.n_dofs());
@@ -122,9 +124,12 @@ main(int argc, char **argv)
   Tensor<1, 3> pressing;
   pressing[2] = -0.25 * F / (w * w);
   assemble_elastic_system(
-    dofs, mapping, constraints,
+    dofs,
+    mapping,
+    constraints,
     [&](unsigned int m) { return std::make_pair(m == 0 ? E : 1e6 * E, nu); },
-    {{1, pressing, &f}}, K);
+    {{1, pressing, &f}},
+    K);
 
   const MortarOperators op = build_mortar_operators(dofs, mapping, 10, 11, 1.0);
   std::ostringstream    log;
@@ -156,9 +161,13 @@ main(int argc, char **argv)
                         << ", element " << h_at_a << ")" << std::endl;
   check("peak pressure within 3 %", p_max, p0, 0.03);
   check("contact radius within one element", a_found, a_exact, 1., h_at_a);
-  check("equilibrium: vertical contact force = F / 4", -vertical, 0.25 * F,
+  check("equilibrium: vertical contact force = F / 4",
+        -vertical,
+        0.25 * F,
         1e-8);
   check("active set settles within 15 iterations",
-        std::min<double>(s.history.size(), 15.), s.history.size(), 0.);
+        std::min<double>(s.history.size(), 15.),
+        s.history.size(),
+        0.);
   return test_tools::finish();
 }

@@ -18,8 +18,8 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/lac/sparsity_tools.h>
 
-#include <squeal/contact/friction_coupling.h>
-#include <squeal/geometry/tribobrake_mesh.h>
+#include <squeal/physics/interface_coupling.h>
+#include <squeal/scene/tribobrake_mesh.h>
 
 #include "test_tools.h"
 
@@ -30,21 +30,24 @@ namespace
 {
   // Two blocks sharing the plane z = 0 but no vertices.
   void
-  make_blocks(const unsigned int n_disc, const unsigned int n_pad,
-              Triangulation<3> &tria)
+  make_blocks(const unsigned int n_disc,
+              const unsigned int n_pad,
+              Triangulation<3>  &tria)
   {
     std::vector<Point<3>>    vertices;
     std::vector<CellData<3>> cells;
     for (const auto &[n, z0, material] :
-         {std::tuple{n_disc, -1., geometry::material::disc},
-          std::tuple{n_pad, 0., geometry::material::pad}})
+         {std::tuple{n_disc, -1., scene::tribobrake::material::disc},
+          std::tuple{n_pad, 0., scene::tribobrake::material::pad}})
       {
         Triangulation<3> block;
-        GridGenerator::subdivided_hyper_rectangle(block, {n, n, 1u},
+        GridGenerator::subdivided_hyper_rectangle(block,
+                                                  {n, n, 1u},
                                                   Point<3>(0, 0, z0),
                                                   Point<3>(1, 1, z0 + 1));
         const unsigned int offset = vertices.size();
-        vertices.insert(vertices.end(), block.get_vertices().begin(),
+        vertices.insert(vertices.end(),
+                        block.get_vertices().begin(),
                         block.get_vertices().end());
         for (const auto &cell : block.active_cell_iterators())
           {
@@ -61,24 +64,27 @@ namespace
         if (cell->face(f)->at_boundary() &&
             std::abs(cell->face(f)->center()[2]) < 1e-12)
           cell->face(f)->set_boundary_id(
-            cell->material_id() == geometry::material::disc ?
-              geometry::boundary::disc_contact :
-              geometry::boundary::pad_contact);
+            cell->material_id() == scene::tribobrake::material::disc ?
+              scene::tribobrake::boundary::disc_contact :
+              scene::tribobrake::boundary::pad_contact);
   }
 
   struct Interface
   {
-    Triangulation<3>                 tria;
-    FESystem<3>                      fe;
-    MappingQ<3>                      mapping;
-    DoFHandler<3>                    dofs;
-    AffineConstraints<double>        constraints;
-    PETScWrappers::MPI::SparseMatrix K_n, K_t;
+    Triangulation<3>                            tria;
+    FESystem<3>                                 fe;
+    MappingQ<3>                                 mapping;
+    DoFHandler<3>                               dofs;
+    AffineConstraints<double>                   constraints;
+    PETScWrappers::MPI::SparseMatrix            K_n, K_t;
     std::map<types::global_dof_index, Point<3>> where;
 
-    Interface(const unsigned int n_disc, const unsigned int n_pad,
-              const unsigned int degree, const std::string &rule,
-              const Tensor<1, 3> &tangent, const double k)
+    Interface(const unsigned int  n_disc,
+              const unsigned int  n_pad,
+              const unsigned int  degree,
+              const std::string  &rule,
+              const Tensor<1, 3> &tangent,
+              const double        k)
       : fe(FE_Q<3>(degree), 3)
       , mapping(degree)
     {
@@ -88,21 +94,21 @@ namespace
       constraints.close();
       scene::ContactPair pair;
       pair.name          = "pad on disc";
-      pair.slave         = geometry::boundary::pad_contact;
-      pair.master        = geometry::boundary::disc_contact;
+      pair.slave         = scene::tribobrake::boundary::pad_contact;
+      pair.master        = scene::tribobrake::boundary::disc_contact;
       pair.normal        = Tensor<1, 3>({0., 0., 1.});
       pair.plane_axes[0] = Tensor<1, 3>({1., 0., 0.});
       pair.plane_axes[1] = Tensor<1, 3>({0., 1., 0.});
       pair.sliding       = tangent;
-      const auto points  = contact::interface_quadrature(
+      const auto points  = physics::interface_quadrature(
         dofs, mapping, pair, rule, rule == "nodal" ? degree + 1 : degree + 2);
       DynamicSparsityPattern dsp(dofs.n_dofs());
       DoFTools::make_sparsity_pattern(dofs, dsp);
-      contact::add_interface_sparsity(points, constraints, dsp);
+      physics::add_interface_sparsity(points, constraints, dsp);
       const IndexSet all = complete_index_set(dofs.n_dofs());
       K_n.reinit(all, all, dsp, MPI_COMM_SELF);
       K_t.reinit(all, all, dsp, MPI_COMM_SELF);
-      contact::assemble_interface(points, constraints, k, pair, K_n, K_t);
+      physics::assemble_interface(points, constraints, k, pair, K_n, K_t);
       K_n.compress(VectorOperation::add);
       K_t.compress(VectorOperation::add);
       DoFTools::map_dofs_to_support_points(mapping, dofs, where);
@@ -113,7 +119,7 @@ namespace
     dof_at(const Point<3> &p, const unsigned int c, const bool disc) const
     {
       for (const auto &cell : dofs.active_cell_iterators())
-        if ((cell->material_id() == geometry::material::disc) == disc)
+        if ((cell->material_id() == scene::tribobrake::material::disc) == disc)
           {
             std::vector<types::global_dof_index> d(fe.n_dofs_per_cell());
             cell->get_dof_indices(d);
@@ -124,7 +130,6 @@ namespace
           }
       return numbers::invalid_dof_index;
     }
-
   };
 } // namespace
 
@@ -139,7 +144,7 @@ main(int argc, char **argv)
     // 1. matching 2 x 2 faces, degree 1, nodal rule, sliding direction -y
     Tensor<1, 3> t;
     t[1] = -1;
-    Interface    I(2, 2, 1, "nodal", t, k);
+    Interface I(2, 2, 1, "nodal", t, k);
     // the thesis' node-pair matrices, independently
     FullMatrix<double> expected_n(I.dofs.n_dofs(), I.dofs.n_dofs()),
       expected_t(I.dofs.n_dofs(), I.dofs.n_dofs());
@@ -150,8 +155,8 @@ main(int argc, char **argv)
           const Point<3> p(i * h, j * h, 0.);
           const double   n_adjacent = (i == 1 ? 2 : 1) * (j == 1 ? 2 : 1);
           const double   kn         = k * n_adjacent * h * h / 4;
-          const auto zd = I.dof_at(p, 2, true), zp = I.dof_at(p, 2, false);
-          const auto yd = I.dof_at(p, 1, true), yp = I.dof_at(p, 1, false);
+          const auto     zd = I.dof_at(p, 2, true), zp = I.dof_at(p, 2, false);
+          const auto     yd = I.dof_at(p, 1, true), yp = I.dof_at(p, 1, false);
           // rows: internal force of F_z^disc = k_n (z_d - z_p) etc.
           expected_n(zd, zd) += kn;
           expected_n(zd, zp) -= kn;
@@ -169,8 +174,10 @@ main(int argc, char **argv)
           dn = std::max(dn, std::abs(I.K_n.el(i, j) - expected_n(i, j)));
           dt = std::max(dt, std::abs(I.K_t.el(i, j) - expected_t(i, j)));
         }
-    check("matching, nodal: K_n equals the node-pair elements", dn, 0, 1e-12, k);
-    check("matching, nodal: K_t equals the thesis' friction rows", dt, 0, 1e-12, k);
+    check(
+      "matching, nodal: K_n equals the node-pair elements", dn, 0, 1e-12, k);
+    check(
+      "matching, nodal: K_t equals the thesis' friction rows", dt, 0, 1e-12, k);
   }
 
   for (const unsigned int degree : {1u, 2u, 3u})
@@ -178,7 +185,7 @@ main(int argc, char **argv)
       {
         Tensor<1, 3> t;
         t[1] = 1;
-        Interface I(3, 2, degree, rule, t, k);
+        Interface                  I(3, 2, degree, rule, t, k);
         PETScWrappers::MPI::Vector u(complete_index_set(I.dofs.n_dofs()),
                                      MPI_COMM_SELF),
           f(u);
@@ -204,15 +211,17 @@ main(int argc, char **argv)
         for (const auto &[i, p] : I.where)
           if (std::abs(p[2]) < 1e-12 && I.dof_at(p, 2, false) == i)
             moment += p[0] * f(i);
-        const std::string tag = "non-matching, degree " +
-                                std::to_string(degree) + ", " + rule + ": ";
+        const std::string tag =
+          "non-matching, degree " + std::to_string(degree) + ", " + rule + ": ";
         check(tag + "unit gap, total pad force -k A", total_pad, -k, 1e-12);
         check(tag + "unit gap, total disc force k A", total_disc, k, 1e-12);
         if (rule == "mortar")
           check(tag + "gap x, pad moment -k/3", moment, -k / 3, 1e-12);
         else if (degree == 1) // Simpson (degree 2) is exact for x^2
           check(tag + "gap x, pad moment misses -k/3 (nodal rule is not exact)",
-                std::abs(moment + k / 3) > 1e-6 * k / 3, 1, 0);
+                std::abs(moment + k / 3) > 1e-6 * k / 3,
+                1,
+                0);
       }
   return test_tools::finish();
 }

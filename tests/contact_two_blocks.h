@@ -39,10 +39,21 @@ struct TwoBlocks
   dealii::Vector<double>            f, f_free;
 
   /** @p upper, @p lower: cells per side of the blocks' square faces. */
-  TwoBlocks(unsigned int degree, unsigned int upper, unsigned int lower,
-            double E_upper, double nu_upper, double E_lower, double nu_lower,
-            dealii::Tensor<1, 3> top_traction, double gap = 0.)
-    : TwoBlocks(degree, E_upper, nu_upper, E_lower, nu_lower, top_traction,
+  TwoBlocks(unsigned int         degree,
+            unsigned int         upper,
+            unsigned int         lower,
+            double               E_upper,
+            double               nu_upper,
+            double               E_lower,
+            double               nu_lower,
+            dealii::Tensor<1, 3> top_traction,
+            double               gap = 0.)
+    : TwoBlocks(degree,
+                E_upper,
+                nu_upper,
+                E_lower,
+                nu_lower,
+                top_traction,
                 [&](dealii::Triangulation<3> &t) {
                   make_mesh(upper, lower, gap, t);
                 })
@@ -50,8 +61,12 @@ struct TwoBlocks
 
   /** The same set-up on the mesh @p fill makes: material ids 0 (upper) and
    *  1 (lower), boundary ids as in the file comment. */
-  TwoBlocks(unsigned int degree, double E_upper, double nu_upper,
-            double E_lower, double nu_lower, dealii::Tensor<1, 3> top_traction,
+  TwoBlocks(unsigned int                                           degree,
+            double                                                 E_upper,
+            double                                                 nu_upper,
+            double                                                 E_lower,
+            double                                                 nu_lower,
+            dealii::Tensor<1, 3>                                   top_traction,
             const std::function<void(dealii::Triangulation<3> &)> &fill)
     : fe(dealii::FE_Q<3>(degree), 3)
     , dofs(tria)
@@ -60,12 +75,12 @@ struct TwoBlocks
     fill(tria);
     dofs.distribute_dofs(fe);
     const Functions::ZeroFunction<3> zero(3);
-    VectorTools::interpolate_boundary_values(mapping, dofs, 2, zero, constraints,
-                                             ComponentMask({false, false, true}));
-    VectorTools::interpolate_boundary_values(mapping, dofs, 3, zero, constraints,
-                                             ComponentMask({true, false, false}));
-    VectorTools::interpolate_boundary_values(mapping, dofs, 4, zero, constraints,
-                                             ComponentMask({false, true, false}));
+    VectorTools::interpolate_boundary_values(
+      mapping, dofs, 2, zero, constraints, ComponentMask({false, false, true}));
+    VectorTools::interpolate_boundary_values(
+      mapping, dofs, 3, zero, constraints, ComponentMask({true, false, false}));
+    VectorTools::interpolate_boundary_values(
+      mapping, dofs, 4, zero, constraints, ComponentMask({false, true, false}));
     constraints.close();
     DynamicSparsityPattern dsp(dofs.n_dofs());
     DoFTools::make_sparsity_pattern(dofs, dsp);
@@ -76,26 +91,35 @@ struct TwoBlocks
     f_free.reinit(dofs.n_dofs());
 
     assemble_elastic_system(
-      dofs, mapping, constraints,
+      dofs,
+      mapping,
+      constraints,
       [&](unsigned int m) {
         return m == 0 ? std::make_pair(E_upper, nu_upper) :
                         std::make_pair(E_lower, nu_lower);
       },
-      {{1, top_traction, &f}}, K, &K_free, &f_free);
+      {{1, top_traction, &f}},
+      K,
+      &K_free,
+      &f_free);
   }
 
   /** The two blocks of @p upper and @p lower cells per side, the upper one
    *  shifted by @p gap, with the ids of the file comment. */
   static void
-  make_mesh(unsigned int upper, unsigned int lower, double gap,
+  make_mesh(unsigned int              upper,
+            unsigned int              lower,
+            double                    gap,
             dealii::Triangulation<3> &tria)
   {
     using namespace dealii;
     Triangulation<3> a, b;
-    GridGenerator::subdivided_hyper_rectangle(a, {upper, upper, 2},
+    GridGenerator::subdivided_hyper_rectangle(a,
+                                              {upper, upper, 2},
                                               Point<3>(0, 0, gap),
                                               Point<3>(1, 1, 1 + gap));
-    GridGenerator::subdivided_hyper_rectangle(b, {lower, lower, 2},
+    GridGenerator::subdivided_hyper_rectangle(b,
+                                              {lower, lower, 2},
                                               Point<3>(0, 0, -1),
                                               Point<3>(1, 1, 0));
     // tolerance 0: the blocks share no vertex, even where they touch
@@ -124,21 +148,24 @@ struct TwoBlocks
       }
   }
 
-  /** Sum of the reaction forces (K_free u - f_free - f_contact) over the DoFs of
+  /** Sum of the reaction forces (K_free u - f_free - f_contact) over the DoFs
+   * of
    *  component @p c on faces with boundary id @p id of the block with
    *  material @p material [N]. */
   double
   reaction(const dealii::Vector<double> &u,
            const dealii::Vector<double> &f_contact,
-           dealii::types::boundary_id id, unsigned int c,
-           unsigned int material) const
+           dealii::types::boundary_id    id,
+           unsigned int                  c,
+           unsigned int                  material) const
   {
     dealii::Vector<double> r(u.size());
     K_free.vmult(r, u);
     r -= f_free;
     r -= f_contact;
-    std::set<dealii::types::global_dof_index> seen;
-    std::vector<dealii::types::global_dof_index> face_dofs(fe.n_dofs_per_face());
+    std::set<dealii::types::global_dof_index>    seen;
+    std::vector<dealii::types::global_dof_index> face_dofs(
+      fe.n_dofs_per_face());
     double sum = 0;
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->material_id() == material)

@@ -1,4 +1,4 @@
-// Anisotropic linear elasticity (physics/elastic_law.h):
+// Anisotropic linear elasticity (scene/material_law.h, physics/elastic_law.h):
 // - the isotropic tensor assembles the same cell stiffness as the Lame
 //   form of add_cell_elasticity (a distorted degree-2 cell, 1e-12);
 // - an orthotropic unit block (friction-material-like constants, held on
@@ -29,6 +29,7 @@
 
 #include <squeal/physics/elastic_law.h>
 #include <squeal/physics/structural_model.h>
+#include <squeal/scene/material_law.h>
 
 #include "check.h"
 
@@ -58,24 +59,31 @@ namespace
       {
         ComponentMask mask(3, false);
         mask.set(d, true);
-        VectorTools::interpolate_boundary_values(mapping, dofs, 2 * d,
+        VectorTools::interpolate_boundary_values(mapping,
+                                                 dofs,
+                                                 2 * d,
                                                  Functions::ZeroFunction<3>(3),
-                                                 constraints, mask);
+                                                 constraints,
+                                                 mask);
       }
     constraints.close();
     DynamicSparsityPattern dsp(dofs.n_dofs());
     DoFTools::make_sparsity_pattern(dofs, dsp, constraints, false);
     SparsityPattern pattern;
     pattern.copy_from(dsp);
-    SparseMatrix<double> K(pattern);
-    Vector<double>       f(dofs.n_dofs()), u(dofs.n_dofs());
-    FEValues<3>     fv(mapping, fe, QGauss<3>(2),
+    SparseMatrix<double>                 K(pattern);
+    Vector<double>                       f(dofs.n_dofs()), u(dofs.n_dofs());
+    FEValues<3>                          fv(mapping,
+                   fe,
+                   QGauss<3>(2),
                    update_gradients | update_JxW_values);
-    FEFaceValues<3> ffv(mapping, fe, QGauss<2>(2),
+    FEFaceValues<3>                      ffv(mapping,
+                        fe,
+                        QGauss<2>(2),
                         update_values | update_JxW_values);
-    const unsigned int n = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_k(n, n);
-    Vector<double>     cell_f(n);
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    FullMatrix<double>                   cell_k(n, n);
+    Vector<double>                       cell_f(n);
     std::vector<types::global_dof_index> cell_dofs(n);
     for (const auto &cell : dofs.active_cell_iterators())
       {
@@ -120,7 +128,9 @@ main(int argc, char **argv)
     MappingQ<3>   mapping(1);
     DoFHandler<3> dofs(tria);
     dofs.distribute_dofs(fe);
-    FEValues<3> fv(mapping, fe, QGauss<3>(3),
+    FEValues<3> fv(mapping,
+                   fe,
+                   QGauss<3>(3),
                    update_values | update_gradients | update_JxW_values);
     fv.reinit(dofs.begin_active());
     const unsigned int n = fe.n_dofs_per_cell();
@@ -128,7 +138,7 @@ main(int argc, char **argv)
     const double       E = 210e9, nu = 0.3;
     const auto [lambda, mu] = physics::lame_constants(E, nu);
     physics::add_cell_elasticity(fv, lambda, mu, 7800., a, m);
-    physics::add_cell_stiffness(fv, physics::isotropic_stiffness(E, nu), b);
+    physics::add_cell_stiffness(fv, scene::isotropic_stiffness(E, nu), b);
     double diff = 0., scale = 0.;
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
@@ -136,45 +146,60 @@ main(int argc, char **argv)
           diff  = std::max(diff, std::abs(a(i, j) - b(i, j)));
           scale = std::max(scale, std::abs(a(i, j)));
         }
-    check("isotropic tensor = Lame form (distorted degree-2 cell)", diff / scale,
-          0., 1e-12, 1.);
+    check("isotropic tensor = Lame form (distorted degree-2 cell)",
+          diff / scale,
+          0.,
+          1e-12,
+          1.);
   }
 
   // 2. orthotropic block
-  const physics::OrthotropicConstants c{10e9, 6e9, 3e9, 0.25, 0.1,
-                                        0.15, 3e9, 1.5e9, 1.2e9};
+  const scene::OrthotropicConstants c{
+    10e9, 6e9, 3e9, 0.25, 0.1, 0.15, 3e9, 1.5e9, 1.2e9};
   {
     const Tensor<1, 3> u =
-      corner_displacement(physics::orthotropic_stiffness(c), 0);
+      corner_displacement(scene::orthotropic_stiffness(c), 0);
     check("orthotropic: eps_xx = sigma / E1", u[0], sigma / c.E1, 1e-10);
-    check("orthotropic: eps_yy = -nu12 sigma / E1", u[1],
-          -c.nu12 * sigma / c.E1, 1e-10);
-    check("orthotropic: eps_zz = -nu13 sigma / E1", u[2],
-          -c.nu13 * sigma / c.E1, 1e-10);
+    check("orthotropic: eps_yy = -nu12 sigma / E1",
+          u[1],
+          -c.nu12 * sigma / c.E1,
+          1e-10);
+    check("orthotropic: eps_zz = -nu13 sigma / E1",
+          u[2],
+          -c.nu13 * sigma / c.E1,
+          1e-10);
   }
   // 3. the frame turned: material axis 1 = global y, 2 = global -x, 3 = z
   {
     Tensor<2, 3> R;
-    R[1][0] = 1.;  // axis 1 -> (0, 1, 0)
-    R[0][1] = -1.; // axis 2 -> (-1, 0, 0)
-    R[2][2] = 1.;
+    R[1][0]              = 1.;  // axis 1 -> (0, 1, 0)
+    R[0][1]              = -1.; // axis 2 -> (-1, 0, 0)
+    R[2][2]              = 1.;
     const Tensor<1, 3> u = corner_displacement(
-      physics::rotate_stiffness(physics::orthotropic_stiffness(c), R), 0);
+      scene::rotate_stiffness(scene::orthotropic_stiffness(c), R), 0);
     check("rotated frame: eps_xx = sigma / E2", u[0], sigma / c.E2, 1e-10);
-    check("rotated frame: eps_yy = -nu12 sigma / E1", u[1],
-          -c.nu12 * sigma / c.E1, 1e-10);
-    check("rotated frame: eps_zz = -nu23 sigma / E2", u[2],
-          -c.nu23 * sigma / c.E2, 1e-10);
+    check("rotated frame: eps_yy = -nu12 sigma / E1",
+          u[1],
+          -c.nu12 * sigma / c.E1,
+          1e-10);
+    check("rotated frame: eps_zz = -nu23 sigma / E2",
+          u[2],
+          -c.nu23 * sigma / c.E2,
+          1e-10);
   }
   // 4. transversely isotropic, loaded along its axis
   {
     const double E_p = 8e9, nu_p = 0.2, E_t = 2e9, nu_pt = 0.3, G_t = 0.9e9;
     const Tensor<1, 3> u = corner_displacement(
-      physics::transversely_isotropic_stiffness(E_p, nu_p, E_t, nu_pt, G_t), 2);
-    check("transversely isotropic: eps_zz = sigma / E_t", u[2], sigma / E_t,
+      scene::transversely_isotropic_stiffness(E_p, nu_p, E_t, nu_pt, G_t), 2);
+    check("transversely isotropic: eps_zz = sigma / E_t",
+          u[2],
+          sigma / E_t,
           1e-10);
     const double lateral = -nu_pt * (E_t / E_p) * sigma / E_t;
-    check("transversely isotropic: eps_xx = -nu_tp sigma / E_t", u[0], lateral,
+    check("transversely isotropic: eps_xx = -nu_tp sigma / E_t",
+          u[0],
+          lateral,
           1e-10);
     check("transversely isotropic: eps_yy = eps_xx", u[1], lateral, 1e-10);
   }
@@ -183,19 +208,25 @@ main(int argc, char **argv)
     auto bad = c;
     bad.E2   = -1.;
     check("a negative modulus is named",
-          error_of([&] { physics::orthotropic_stiffness(bad); })
-              .find("E2 must be a positive modulus") != std::string::npos,
-          1., 0.);
+          error_of([&] {
+            scene::orthotropic_stiffness(bad);
+          }).find("E2 must be a positive modulus") != std::string::npos,
+          1.,
+          0.);
     bad      = c;
     bad.nu12 = 2.;
     check("indefinite Poisson ratios are refused",
-          error_of([&] { physics::orthotropic_stiffness(bad); })
-              .find("make the compliance indefinite") != std::string::npos,
-          1., 0.);
+          error_of([&] {
+            scene::orthotropic_stiffness(bad);
+          }).find("make the compliance indefinite") != std::string::npos,
+          1.,
+          0.);
     check("nu = 0.5 is refused for an isotropic law",
-          error_of([&] { physics::isotropic_stiffness(1e9, 0.5); })
-              .find("-1 < nu < 0.5") != std::string::npos,
-          1., 0.);
+          error_of([&] {
+            scene::isotropic_stiffness(1e9, 0.5);
+          }).find("-1 < nu < 0.5") != std::string::npos,
+          1.,
+          0.);
   }
   return test_tools::finish();
 }

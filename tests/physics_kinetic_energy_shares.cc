@@ -13,9 +13,9 @@
 
 #include <squeal/physics/structural_model.h>
 
-#include <random>
-
 #include "test_tools.h"
+
+#include <random>
 
 using namespace dealii;
 using namespace squeal;
@@ -27,13 +27,13 @@ main(int argc, char **argv)
   ConditionalOStream               quiet(std::cout, false);
   for (const unsigned int degree : {1u, 2u})
     {
-      auto prm            = test_tools::coarse_tribobrake(24, 3, 1, 2, 1);
-      prm.mesh.fe_degree  = degree;
+      auto prm           = test_tools::coarse_tribobrake(24, 3, 1, 2, 1);
+      prm.mesh.fe_degree = degree;
       physics::StructuralModel model(prm, MPI_COMM_WORLD);
       model.setup_and_assemble(quiet);
       parameters::ScalarPoint point = prm.nominal_point();
       point.support_density         = 7800.;
-      const std::string name = "degree " + std::to_string(degree) + ": ";
+      const std::string name        = "degree " + std::to_string(degree) + ": ";
 
       physics::PETScVector u(model.locally_owned_dofs, MPI_COMM_WORLD),
         zero(model.locally_owned_dofs, MPI_COMM_WORLD);
@@ -52,24 +52,34 @@ main(int argc, char **argv)
         physics::kinetic_energy_by_body(model, point, u, zero);
       const auto  &g   = prm.geometry;
       const double pad = prm.materials.pad.density * std::pow(g.pad_size, 3);
-      const double support =
-        7800. * g.pad_size * g.pad_size * g.support_length;
-      const double total = e[0] + e[1] + e[2];
+      const double support = 7800. * g.pad_size * g.pad_size * g.support_length;
+      const double total   = e[0] + e[1] + e[2];
       test_tools::check(name + "three bodies", e.size(), 3., 0.);
       test_tools::check(name + "disc share of a pad-and-support field",
-                        e[0] / total, 0., 1e-14, 1.);
-      test_tools::check(name + "pad share = rho_p a^3 / (rho_p a^3 + rho_s a^2 L)",
-                        e[1] / total, pad / (pad + support), 1e-12);
+                        e[0] / total,
+                        0.,
+                        1e-14,
+                        1.);
+      test_tools::check(name +
+                          "pad share = rho_p a^3 / (rho_p a^3 + rho_s a^2 L)",
+                        e[1] / total,
+                        pad / (pad + support),
+                        1e-12);
       test_tools::check(name + "support share at 7800 kg/m^3",
-                        e[2] / total, support / (pad + support), 1e-12);
-      test_tools::check(name + "support energy = rho_s V_s (not the reference density)",
-                        e[2], support, 1e-12);
+                        e[2] / total,
+                        support / (pad + support),
+                        1e-12);
+      test_tools::check(
+        name + "support energy = rho_s V_s (not the reference density)",
+        e[2],
+        support,
+        1e-12);
 
       // random field, clamped and hanging values as the constraints want
       std::mt19937                           rng(7);
       std::uniform_real_distribution<double> uniform(-1., 1.);
-      physics::PETScVector re(model.locally_owned_dofs, MPI_COMM_WORLD),
-        im(re), Mx(re);
+      physics::PETScVector re(model.locally_owned_dofs, MPI_COMM_WORLD), im(re),
+        Mx(re);
       for (unsigned int i = 0; i < model.n_dofs(); ++i)
         {
           const double a = uniform(rng), b = uniform(rng);
@@ -92,7 +102,9 @@ main(int argc, char **argv)
       const std::vector<double> r =
         physics::kinetic_energy_by_body(model, point, re, im);
       test_tools::check(name + "sum over bodies = re^T M(p) re + im^T M(p) im",
-                        r[0] + r[1] + r[2], matrix, 1e-10);
+                        r[0] + r[1] + r[2],
+                        matrix,
+                        1e-10);
     }
   return test_tools::finish();
 }

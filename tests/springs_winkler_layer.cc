@@ -49,7 +49,10 @@ namespace
   {
     physics::PETScVector u(model.locally_owned_dofs, MPI_COMM_WORLD),
       ku(model.locally_owned_dofs, MPI_COMM_WORLD);
-    VectorTools::interpolate(model.mapping, model.dof_handler, SlidingField(f), u);
+    VectorTools::interpolate(model.mapping,
+                             model.dof_handler,
+                             SlidingField(f),
+                             u);
     model.stiffness_springs.vmult(ku, u);
     return u * ku;
   }
@@ -62,14 +65,16 @@ main(int argc, char **argv)
   using test_tools::check;
   ConditionalOStream quiet(std::cout, false);
 
-  // the bell's second moment in x: int_0^a w(r) r^3 dr pi / (2 pi int_0^a w r dr)
+  // the bell's second moment in x: int_0^a w(r) r^3 dr pi / (2 pi int_0^a w r
+  // dr)
   const double    a = parameters::Springs().attachment_radius;
   const QGauss<1> gauss(20);
   double          m2 = 0, m0 = 0;
   for (unsigned int q = 0; q < gauss.size(); ++q)
     {
       const double r = a * gauss.point(q)[0];
-      const double w = 0.5 * (1. + std::cos(numbers::PI * r / a)) * a * gauss.weight(q);
+      const double w =
+        0.5 * (1. + std::cos(numbers::PI * r / a)) * a * gauss.weight(q);
       m2 += w * r * r * r * numbers::PI;
       m0 += w * r * 2. * numbers::PI;
     }
@@ -84,27 +89,34 @@ main(int argc, char **argv)
       prm.mesh.support_cells_length = support_cells;
       physics::StructuralModel model(prm, MPI_COMM_WORLD);
       model.setup_and_assemble(quiet);
-      const auto  &g    = prm.geometry;
-      const double k    = model.reference.spring_stiffness;
-      const double d    = g.pad_size / 4; // rows at x_pad +- 2.5 mm
+      const auto       &g  = prm.geometry;
+      const double      k  = model.reference.spring_stiffness;
+      const double      d  = g.pad_size / 4; // rows at x_pad +- 2.5 mm
       const std::string on = " (degree " + std::to_string(degree) + ", " +
-                             std::to_string(support_cells) +
-                             " support cells)";
+                             std::to_string(support_cells) + " support cells)";
       check("rigid translation: u^T K_s u = 44 k" + on,
-            energy(model, [](const Point<3> &) { return 1.; }), 44 * k, 1e-10);
+            energy(model, [](const Point<3> &) { return 1.; }),
+            44 * k,
+            1e-10);
       check("u_y = x - x_pad: 44 k (d^2 + s^2)" + on,
-            energy(model, [&](const Point<3> &p) { return p[0] - g.pad_radius; }),
-            44 * k * (d * d + s2), 1e-6);
+            energy(model,
+                   [&](const Point<3> &p) { return p[0] - g.pad_radius; }),
+            44 * k * (d * d + s2),
+            1e-6);
       const double z_mid = g.pad_size + g.support_length / 2;
       quadratic.push_back(energy(model, [&](const Point<3> &p) {
         const double t = (p[2] - z_mid) / g.support_length;
         return t * t;
       }));
     }
-  check("u_y = ((z - z_mid) / L)^2: degree 3 = degree 2", quadratic[1],
-        quadratic[0], 1e-6);
-  check("u_y = ((z - z_mid) / L)^2: support cells 20 = 10", quadratic[2],
-        quadratic[0], 1e-6);
+  check("u_y = ((z - z_mid) / L)^2: degree 3 = degree 2",
+        quadratic[1],
+        quadratic[0],
+        1e-6);
+  check("u_y = ((z - z_mid) / L)^2: support cells 20 = 10",
+        quadratic[2],
+        quadratic[0],
+        1e-6);
   test_tools::verbose() << "s^2 = " << s2 << " m^2, quadratic energies "
                         << quadratic[0] << " " << quadratic[1] << " "
                         << quadratic[2] << " J\n";

@@ -22,9 +22,9 @@
 #include <squeal/eigen/tracking.h>
 #include <squeal/physics/structural_model.h>
 
-#include <fstream>
-
 #include "test_tools.h"
+
+#include <fstream>
 
 using namespace dealii;
 using namespace squeal;
@@ -41,9 +41,9 @@ main(int argc, char **argv)
                          Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
 
   const parameters::AllParameters prm = test_tools::coarse_tribobrake();
-  physics::StructuralModel model(prm, MPI_COMM_WORLD);
+  physics::StructuralModel        model(prm, MPI_COMM_WORLD);
   model.setup_and_assemble(quiet);
-  const auto parts = model.parts();
+  const auto               parts = model.parts();
   const eigen::BandOptions band{900., 20000., 100., 1e-10, 60};
 
   const auto at = [&](const double E, const double mu, const double kn) {
@@ -66,7 +66,7 @@ main(int argc, char **argv)
                         Case{"k_n = 1e14 N/m^3", at(25e9, 0.5, 1e14)},
                         Case{"k_n = 1e9 N/m^3", at(25e9, 0.5, 1e9)}})
     {
-      const auto full = eigen::solve_full(parts, c.point, band, quiet);
+      const auto full     = eigen::solve_full(parts, c.point, band, quiet);
       double     residual = 0, max_re = -1e300;
       for (const auto &f : full)
         {
@@ -93,41 +93,50 @@ main(int argc, char **argv)
                   df[depth] = 1;
                   continue;
                 }
-              df[depth] = std::max(df[depth],
-                                   std::abs(best->lambda.imag() -
-                                            f.lambda.imag()) /
-                                     f.lambda.imag());
-              dre[depth] = std::max(dre[depth],
-                                    std::abs(best->lambda.real() -
-                                             f.lambda.real()) /
-                                      (std::abs(f.lambda.real()) + 1.));
+              df[depth] =
+                std::max(df[depth],
+                         std::abs(best->lambda.imag() - f.lambda.imag()) /
+                           f.lambda.imag());
+              dre[depth] =
+                std::max(dre[depth],
+                         std::abs(best->lambda.real() - f.lambda.real()) /
+                           (std::abs(f.lambda.real()) + 1.));
             }
         }
       // conditioning indicators
       physics::PETScMatrix Ks, Ki;
-      const auto coeff = parts.coefficients(c.point);
-      auto       structural = coeff.structural, interface = coeff.stiffness;
+      const auto           coeff = parts.coefficients(c.point);
+      auto structural = coeff.structural, interface = coeff.stiffness;
       for (unsigned int k = 0; k < physics::MatrixParts::n_parts; ++k)
         interface[k] -= structural[k];
       parts.combine(structural, Ks);
       parts.combine(interface, Ki);
       err << c.name << ": " << full.size() << " modes in the band, "
           << "interface/structural stiffness (Frobenius) "
-          << Ki.frobenius_norm() / Ks.frobenius_norm()
-          << ", largest residual " << residual << ", largest Re " << max_re
+          << Ki.frobenius_norm() / Ks.frobenius_norm() << ", largest residual "
+          << residual << ", largest Re " << max_re
           << " 1/s; reduced-full, depth 1: " << df[1] << " / " << dre[1]
           << ", depth 2: " << df[2] << " / " << dre[2] << std::endl;
       check(c.name + ": full solver finds modes in the band",
-            std::min<double>(full.size(), 20), 20, 0);
-      check(c.name + ": full residuals below 1e-6", std::max(residual, 1e-6),
-            1e-6, 0);
+            std::min<double>(full.size(), 20),
+            20,
+            0);
+      check(c.name + ": full residuals below 1e-6",
+            std::max(residual, 1e-6),
+            1e-6,
+            0);
       for (const unsigned int depth : {1u, 2u})
         {
-          const std::string d = " (enrichment depth " + std::to_string(depth) + ")";
+          const std::string d =
+            " (enrichment depth " + std::to_string(depth) + ")";
           check(c.name + ": reduced frequencies within 0.1 % of full" + d,
-                std::max(df[depth], 1e-3), 1e-3, 0);
+                std::max(df[depth], 1e-3),
+                1e-3,
+                0);
           check(c.name + ": reduced growth rates within 2 % of |Re| + 1" + d,
-                std::max(dre[depth], 2e-2), 2e-2, 0);
+                std::max(dre[depth], 2e-2),
+                2e-2,
+                0);
         }
     }
 
@@ -138,7 +147,7 @@ main(int argc, char **argv)
     eigen::BandOptions low    = band;
     low.f_min                 = 1.;
     low.target_frequency      = 0.5;
-    const auto full           = eigen::solve_full(parts, p, low, quiet);
+    const auto   full         = eigen::solve_full(parts, p, low, quiet);
     unsigned int spurious = 0, near_zero = 0;
     for (const auto &f : full)
       if (f.lambda.imag() / (2 * M_PI) < 100.)
@@ -148,15 +157,21 @@ main(int argc, char **argv)
         }
     err << "near-free support: " << full.size() << " modes in 1-20000 Hz, "
         << near_zero << " below 100 Hz" << std::endl;
-    check("near-free support: no unstable eigenvalue below 100 Hz", spurious,
-          0, 0);
+    check("near-free support: no unstable eigenvalue below 100 Hz",
+          spurious,
+          0,
+          0);
   }
 
   // doublets split by the pad, tracked over E_pad at mu = 0
   {
     eigen::ReducedModel reduced;
-    reduced.build(parts, {at(1e9, 0, kn), at(1e10, 0, kn), at(1e11, 0, kn)},
-                  band, 1.5, true, quiet);
+    reduced.build(parts,
+                  {at(1e9, 0, kn), at(1e10, 0, kn), at(1e11, 0, kn)},
+                  band,
+                  1.5,
+                  true,
+                  quiet);
     std::vector<std::vector<std::complex<double>>> lambdas;
     std::vector<std::vector<Eigen::VectorXcd>>     q;
     std::vector<Eigen::MatrixXd>                   macs;
@@ -173,8 +188,8 @@ main(int argc, char **argv)
         macs.push_back(k > 0 ? test_tools::mac_matrix(q[k - 1], q[k]) :
                                Eigen::MatrixXd());
       }
-    int        next   = 0;
-    const auto tracks = eigen::track_modes(lambdas, macs, next);
+    int          next        = 0;
+    const auto   tracks      = eigen::track_modes(lambdas, macs, next);
     unsigned int close_links = 0, swapped = 0;
     for (unsigned int k = 1; k < tracks.size(); ++k)
       for (unsigned int i = 0; i < tracks[k - 1].size(); ++i)
@@ -190,11 +205,10 @@ main(int argc, char **argv)
                   if (macs[k](i, o) > macs[k](i, j))
                     {
                       ++swapped;
-                      err << "swap at point " << k << ": "
-                          << lambdas[k - 1][i] << " -> " << lambdas[k][j]
-                          << " (MAC " << macs[k](i, j) << "), not "
-                          << lambdas[k][o] << " (MAC " << macs[k](i, o)
-                          << ")" << std::endl;
+                      err << "swap at point " << k << ": " << lambdas[k - 1][i]
+                          << " -> " << lambdas[k][j] << " (MAC "
+                          << macs[k](i, j) << "), not " << lambdas[k][o]
+                          << " (MAC " << macs[k](i, o) << ")" << std::endl;
                     }
                 }
     err << "doublets: " << close_links

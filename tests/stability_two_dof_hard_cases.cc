@@ -26,20 +26,22 @@ using namespace squeal;
 
 namespace
 {
-  using Model              = test_tools::HoffmannTwoDof;
+  using Model        = test_tools::HoffmannTwoDof;
   constexpr double a = Model::a, b0 = Model::b, c = Model::c, k3 = Model::k3;
 
   // Independent: eigenvalues with Im > 0 of the companion matrix of
   // lambda^2 I + lambda C + K, by Eigen.
   std::vector<std::complex<double>>
-  dense_reference(const double b, const double mu, const double alpha,
+  dense_reference(const double b,
+                  const double mu,
+                  const double alpha,
                   const double beta)
   {
     Eigen::Matrix2d K, Ks;
     Ks << a, c, c, b;
     K << a, c - mu * k3, c, b;
-    const Eigen::Matrix2d C = alpha * Eigen::Matrix2d::Identity() + beta * Ks;
-    Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+    const Eigen::Matrix2d C   = alpha * Eigen::Matrix2d::Identity() + beta * Ks;
+    Eigen::Matrix4d       A   = Eigen::Matrix4d::Zero();
     A.topRightCorner(2, 2)    = Eigen::Matrix2d::Identity();
     A.bottomLeftCorner(2, 2)  = -K;
     A.bottomRightCorner(2, 2) = -C;
@@ -47,8 +49,9 @@ namespace
     for (const auto &x : Eigen::EigenSolver<Eigen::Matrix4d>(A).eigenvalues())
       if (x.imag() > 0)
         l.push_back(x);
-    std::sort(l.begin(), l.end(),
-              [](auto x, auto y) { return x.imag() < y.imag(); });
+    std::sort(l.begin(), l.end(), [](auto x, auto y) {
+      return x.imag() < y.imag();
+    });
     return l;
   }
 } // namespace
@@ -58,10 +61,10 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using test_tools::check;
-  ConditionalOStream        quiet(std::cout, false);
-  const Model               model;
-  const eigen::BandOptions  band{1., 1e4, 1., 1e-12, 2};
-  eigen::ReducedModel       reduced;
+  ConditionalOStream       quiet(std::cout, false);
+  const Model              model;
+  const eigen::BandOptions band{1., 1e4, 1., 1e-12, 2};
+  eigen::ReducedModel      reduced;
   reduced.build(model.parts(), {Model::point(b0, 0.)}, band, 1.5, true, quiet);
 
   // 1. the exceptional point
@@ -73,7 +76,7 @@ main(int argc, char **argv)
     const auto red = reduced.solve(Model::point(b0, mu_c), 1., 1e4);
     for (const bool is_full : {true, false})
       {
-        const std::string tag = is_full ? "full" : "reduced";
+        const std::string                 tag = is_full ? "full" : "reduced";
         std::vector<std::complex<double>> l;
         double                            residual = 0;
         if (is_full)
@@ -89,21 +92,30 @@ main(int argc, char **argv)
               residual = std::max(residual, p.residual);
             }
         check("exact lock-in, " + tag + ": both eigenvalues returned",
-              l.size(), 2, 0);
+              l.size(),
+              2,
+              0);
         for (unsigned int k = 0; k < std::min<std::size_t>(2, l.size()); ++k)
           {
             const std::string m = " (eigenvalue " + std::to_string(k) + ")";
             check("exact lock-in, " + tag + ": omega = sqrt((a+b)/2)" + m,
-                  l[k].imag(), w_c, 1e-7);
+                  l[k].imag(),
+                  w_c,
+                  1e-7);
             // at an exceptional point round-off eps splits the eigenvalues
             // by about sqrt(eps) |lambda|
             check("exact lock-in, " + tag + ": Re lambda ~ 0" + m,
-                  l[k].real(), 0., 1e-6, w_c);
+                  l[k].real(),
+                  0.,
+                  1e-6,
+                  w_c);
           }
         // the eigenvalue of an exceptional point is only determined to
         // about sqrt(eps): residuals of that size are the best possible
         check("exact lock-in, " + tag + ": residuals below 1e-6",
-              std::max(residual, 1e-6), 1e-6, 0);
+              std::max(residual, 1e-6),
+              1e-6,
+              0);
       }
   }
 
@@ -130,13 +142,13 @@ main(int argc, char **argv)
         macs.push_back(k > 0 ? test_tools::mac_matrix(q[k - 1], q[k]) :
                                Eigen::MatrixXd());
       }
-    int        next   = 0;
-    const auto tracks = eigen::track_modes(lambdas, macs, next);
+    int        next     = 0;
+    const auto tracks   = eigen::track_modes(lambdas, macs, next);
     bool       two_each = true, continuous = true;
     for (unsigned int k = 0; k < tracks.size(); ++k)
       {
-        two_each = two_each && tracks[k].size() == 2 &&
-                   tracks[k][0] != tracks[k][1];
+        two_each =
+          two_each && tracks[k].size() == 2 && tracks[k][0] != tracks[k][1];
         if (k == 0)
           continue;
         for (unsigned int j = 0; j < tracks[k].size(); ++j)
@@ -151,11 +163,12 @@ main(int argc, char **argv)
                 // the tracked successor is the nearest in frequency
                 double nearest = 1e300;
                 for (const auto &o : lambdas[k])
-                  nearest = std::min(nearest, std::abs(o.imag() -
-                                                       lambdas[k - 1][i].imag()));
-                const bool ok = std::abs(lambdas[k][j].imag() -
-                                         lambdas[k - 1][i].imag()) <=
-                                nearest * (1 + 1e-9) + 1e-9;
+                  nearest =
+                    std::min(nearest,
+                             std::abs(o.imag() - lambdas[k - 1][i].imag()));
+                const bool ok =
+                  std::abs(lambdas[k][j].imag() - lambdas[k - 1][i].imag()) <=
+                  nearest * (1 + 1e-9) + 1e-9;
                 if (!ok)
                   std::cerr << "swap at b = " << bs[k] << ": "
                             << lambdas[k - 1][i] << " -> " << lambdas[k][j]
@@ -164,21 +177,32 @@ main(int argc, char **argv)
               }
       }
     check("lock-in sweep: two modes with two distinct tracks at every point",
-          two_each, 1, 0);
+          two_each,
+          1,
+          0);
     check("lock-in sweep: two tracks in all", next, 2, 0);
-    check("lock-in sweep: where stable, each track goes to the nearest frequency",
-          continuous, 1, 0);
+    check(
+      "lock-in sweep: where stable, each track goes to the nearest frequency",
+      continuous,
+      1,
+      0);
     const auto regions =
       eigen::find_unstable_regions(mu, bs, index, lambdas, tracks, 1e-3);
     check("lock-in sweep: one unstable region", regions.size(), 1, 0);
     if (regions.size() == 1)
       {
         check("lock-in sweep: region starts at b = 3.2e6 (closed form 3e6)",
-              regions[0].first_min, 3.2e6, 1e-12);
+              regions[0].first_min,
+              3.2e6,
+              1e-12);
         check("lock-in sweep: region ends at b = 6.8e6 (closed form 7e6)",
-              regions[0].first_max, 6.8e6, 1e-12);
+              regions[0].first_max,
+              6.8e6,
+              1e-12);
         check("lock-in sweep: the locking-in partner is named",
-              regions[0].partner_track >= 0, 1, 0);
+              regions[0].partner_track >= 0,
+              1,
+              0);
         // closed form: lambda^2 = -(a + b) / 2 +- i sqrt(-D) / 2 with
         // D = (a - b)^2 + 4 c (c - mu k3) < 0; the largest Re on the grid
         double largest = 0;
@@ -186,25 +210,31 @@ main(int argc, char **argv)
           {
             const double D = (a - b) * (a - b) + 4 * c * (c - mu * k3);
             if (D < 0)
-              largest = std::max(
-                largest, std::abs(std::sqrt(std::complex<double>(
+              largest =
+                std::max(largest,
+                         std::abs(std::sqrt(std::complex<double>(
                                               -(a + b) / 2, std::sqrt(-D) / 2))
                                     .real()));
           }
         check("lock-in sweep: largest growth rate (closed form, 1e-6)",
-              regions[0].max_re, largest, 1e-6);
+              regions[0].max_re,
+              largest,
+              1e-6);
       }
   }
 
   // 3. zero and large damping against an independent dense computation
-  for (const auto &[alpha, beta] :
-       {std::pair{0., 0.}, std::pair{1e3, 0.}, std::pair{0., 1e-5},
-        std::pair{1e3, 1e-5}})
+  for (const auto &[alpha, beta] : {std::pair{0., 0.},
+                                    std::pair{1e3, 0.},
+                                    std::pair{0., 1e-5},
+                                    std::pair{1e3, 1e-5}})
     for (const double mu : {0., 0.5})
       {
         const auto reference = dense_reference(b0, mu, alpha, beta);
-        const auto full      = eigen::solve_full(
-          model.parts(), Model::point(b0, mu, alpha, beta), band, quiet);
+        const auto full      = eigen::solve_full(model.parts(),
+                                            Model::point(b0, mu, alpha, beta),
+                                            band,
+                                            quiet);
         const auto red =
           reduced.solve(Model::point(b0, mu, alpha, beta), 1., 1e4);
         std::ostringstream tag;
@@ -227,7 +257,9 @@ main(int argc, char **argv)
               worst = std::max(worst, nearest / std::abs(ref));
             }
         check(tag.str() + ": eigenvalues equal the dense reference (1e-8)",
-              std::max(worst, 1e-8), 1e-8, 0);
+              std::max(worst, 1e-8),
+              1e-8,
+              0);
       }
   return test_tools::finish();
 }

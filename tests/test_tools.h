@@ -8,10 +8,11 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <squeal/eigen/mac.h>
 #include <squeal/eigen/reduced_model.h>
+#include <squeal/parameters/parameters.h>
 
 #include "check.h"
-#include <squeal/parameters/parameters.h>
 
 #include <cmath>
 #include <iomanip>
@@ -51,7 +52,7 @@ namespace test_tools
     Eigen::MatrixXd mac(a.size(), b.size());
     for (unsigned int i = 0; i < a.size(); ++i)
       for (unsigned int j = 0; j < b.size(); ++j)
-        mac(i, j) = squeal::eigen::ReducedModel::mac(a[i], b[j]);
+        mac(i, j) = squeal::eigen::complex_mac(a[i], b[j]);
     return mac;
   }
 
@@ -64,7 +65,7 @@ namespace test_tools
    */
   struct HoffmannTwoDof
   {
-    static constexpr double a = 5e6, b = 6e6, c = 1e6, k3 = 4e6;
+    static constexpr double    a = 5e6, b = 6e6, c = 1e6, k3 = 4e6;
     squeal::eigen::PETScMatrix M, zero, rest, pad, friction;
     HoffmannTwoDof()
     {
@@ -100,8 +101,10 @@ namespace test_tools
     }
     /** The point with K_22 = @p b_value, friction mu, Rayleigh alpha, beta. */
     static squeal::parameters::ScalarPoint
-    point(const double b_value, const double mu, const double alpha = 0,
-          const double beta = 0)
+    point(const double b_value,
+          const double mu,
+          const double alpha = 0,
+          const double beta  = 0)
     {
       return {b_value, mu, 1., 1., 1., alpha, beta};
     }

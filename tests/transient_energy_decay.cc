@@ -31,9 +31,9 @@ main(int argc, char **argv)
   using namespace squeal;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   parameters::AllParameters prm = test_tools::coarse_tribobrake(32, 4, 2);
-  prm.scene.type              = "disc";
-  ConditionalOStream          quiet(std::cout, false);
-  physics::StructuralModel    model(prm, MPI_COMM_WORLD);
+  prm.scene.type                = "disc";
+  ConditionalOStream       quiet(std::cout, false);
+  physics::StructuralModel model(prm, MPI_COMM_WORLD);
   model.setup_and_assemble(quiet);
   const physics::MatrixParts parts = model.parts();
   physics::PETScMatrix       K_petsc;
@@ -45,21 +45,26 @@ main(int argc, char **argv)
   std::vector<bool>  fixed(n);
   for (unsigned int i = 0; i < n; ++i)
     fixed[i] = model.constraints.is_constrained(i);
-  const Vector<double> M = transient::lumped_mass(
-    model.dof_handler, model.mapping,
-    [&](const auto &) { return prm.materials.disc.density; });
+  const Vector<double> M =
+    transient::lumped_mass(model.dof_handler, model.mapping, [&](const auto &) {
+      return prm.materials.disc.density;
+    });
 
   // An axisymmetric start: u_z rising with the radius.
   std::map<types::global_dof_index, Point<3>> points;
-  DoFTools::map_dofs_to_support_points(model.mapping, model.dof_handler, points);
+  DoFTools::map_dofs_to_support_points(model.mapping,
+                                       model.dof_handler,
+                                       points);
   std::vector<bool> is_z(n, false);
-  for (const auto i : DoFTools::extract_dofs(model.dof_handler,
-                                             ComponentMask({false, false, true})))
+  for (const auto i :
+       DoFTools::extract_dofs(model.dof_handler,
+                              ComponentMask({false, false, true})))
     is_z[i] = true;
   Vector<double> x(n);
   for (const auto &[i, p] : points)
     if (!fixed[i] && is_z[i])
-      x[i] = std::pow(std::hypot(p[0], p[1]) - prm.geometry.disc_inner_radius, 2);
+      x[i] =
+        std::pow(std::hypot(p[0], p[1]) - prm.geometry.disc_inner_radius, 2);
 
   // Inverse iteration on K x = omega^2 M x.
   SparseDirectUMFPACK solver;
@@ -88,7 +93,7 @@ main(int argc, char **argv)
     transient::ExplicitSettings s;
     s.time_step = 0.9 * limit.critical;
     transient::ExplicitDynamics d(K, M, fixed, s, limit.critical);
-    Vector<double> u0(n), v0(n);
+    Vector<double>              u0(n), v0(n);
     // a mixture of many modes: the axisymmetric start plus a cos 2 theta part
     for (const auto &[i, p] : points)
       if (!fixed[i])
@@ -115,19 +120,19 @@ main(int argc, char **argv)
       }
     test_tools::verbose() << "energy: dt " << s.time_step << " s, drift "
                           << drift << " over 1e5 steps\n";
-    test_tools::check("modified energy drift over 1e5 steps < 1e-6", drift, 0.,
-                      1e-6, 1.);
+    test_tools::check(
+      "modified energy drift over 1e5 steps < 1e-6", drift, 0., 1e-6, 1.);
   }
 
   // 2. Decay of the (0,0) mode under Rayleigh damping.
   {
     transient::ExplicitSettings s;
-    s.alpha              = 50.;
-    s.beta               = 1e-6;
-    const auto damped    = transient::stable_time_step(K, M, fixed, s.beta, 0.5);
-    s.time_step          = 0.9 * damped.critical;
+    s.alpha           = 50.;
+    s.beta            = 1e-6;
+    const auto damped = transient::stable_time_step(K, M, fixed, s.beta, 0.5);
+    s.time_step       = 0.9 * damped.critical;
     transient::ExplicitDynamics d(K, M, fixed, s, damped.critical);
-    Vector<double> u0(x), v0(n);
+    Vector<double>              u0(x), v0(n);
     u0 *= 1e-6;
     d.initialise(u0, v0);
     const Vector<double> f(n);
@@ -153,7 +158,7 @@ main(int argc, char **argv)
         q_prev  = q;
       }
     // least squares of ln q_peak against t; period from the peak times
-    double st = 0, sy = 0, stt = 0, sty = 0;
+    double             st = 0, sy = 0, stt = 0, sty = 0;
     const unsigned int m = t_peak.size();
     for (unsigned int k = 0; k < m; ++k)
       {
@@ -162,18 +167,22 @@ main(int argc, char **argv)
         stt += t_peak[k] * t_peak[k];
         sty += t_peak[k] * std::log(q_peak[k]);
       }
-    const double rate   = -(m * sty - st * sy) / (m * stt - st * st);
-    const double period = (t_peak.back() - t_peak.front()) / (m - 1);
-    const double sigma  = (s.alpha + s.beta * omega2) / 2.;
+    const double rate    = -(m * sty - st * sy) / (m * stt - st * st);
+    const double period  = (t_peak.back() - t_peak.front()) / (m - 1);
+    const double sigma   = (s.alpha + s.beta * omega2) / 2.;
     const double omega_d = std::sqrt(omega2 - sigma * sigma);
     test_tools::verbose() << "decay: dt " << s.time_step << " s, " << m
                           << " peaks, rate " << rate << " 1/s (CEA " << sigma
                           << "), frequency " << 1. / period << " Hz (CEA "
                           << omega_d / (2 * numbers::PI) << ")\n";
-    test_tools::check("decay rate = (alpha + beta omega^2) / 2 (1 %)", rate,
-                      sigma, 0.01);
+    test_tools::check("decay rate = (alpha + beta omega^2) / 2 (1 %)",
+                      rate,
+                      sigma,
+                      0.01);
     test_tools::check("damped frequency = Im lambda (1 %)",
-                      2 * numbers::PI / period, omega_d, 0.01);
+                      2 * numbers::PI / period,
+                      omega_d,
+                      0.01);
   }
   return test_tools::finish();
 }

@@ -22,9 +22,10 @@ main(int argc, char **argv)
   using namespace dealii;
   using namespace squeal;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const double p = 0.05, V = 0.1;
-  TwoBlocks    b(1, 4, 3, 200., 0.3, 100., 0.25, Tensor<1, 3>({0., 0., -p}));
-  const auto   mortar = contact::build_mortar_operators(b.dofs, b.mapping, 10, 11, 0.1);
+  const double                     p = 0.05, V = 0.1;
+  TwoBlocks  b(1, 4, 3, 200., 0.3, 100., 0.25, Tensor<1, 3>({0., 0., -p}));
+  const auto mortar =
+    contact::build_mortar_operators(b.dofs, b.mapping, 10, 11, 0.1);
   const Vector<double> mass =
     transient::lumped_mass(b.dofs, b.mapping, [](const auto &) { return 1.; });
   std::vector<bool> fixed(b.dofs.n_dofs());
@@ -49,9 +50,10 @@ main(int argc, char **argv)
       unsigned int n_avg = 0, n_slip_min = mortar.n_slave();
       for (unsigned int k = 0; k * s.time_step < T_end; ++k)
         {
-          f = b.f;
+          f               = b.f;
           const double tn = k * s.time_step;
-          f *= tn >= T_ramp ? 1. : 0.5 * (1 - std::cos(numbers::PI * tn / T_ramp));
+          f *=
+            tn >= T_ramp ? 1. : 0.5 * (1 - std::cos(numbers::PI * tn / T_ramp));
           d.step(f);
           if (d.time() > T_end - 5.)
             {
@@ -60,7 +62,7 @@ main(int argc, char **argv)
               // the reaction of the hold at x = 0 of the upper block: the
               // contact forces of the multipliers enter the balance of the
               // nodes on both faces
-              const auto &c = d.contact_state();
+              const auto    &c = d.contact_state();
               Vector<double> f_contact(b.dofs.n_dofs());
               for (unsigned int j = 0; j < mortar.n_slave(); ++j)
                 {
@@ -84,16 +86,20 @@ main(int argc, char **argv)
       F_T /= n_avg;
       hold /= n_avg;
       const std::string m = "mu = " + std::to_string(mu).substr(0, 4) + ": ";
-      test_tools::verbose() << m << "F_N " << F_N << " (p A = " << p
-                            << "), F_T " << F_T << ", hold " << hold
-                            << ", slipping nodes >= " << n_slip_min << " of "
-                            << mortar.n_slave() << "\n";
+      test_tools::verbose()
+        << m << "F_N " << F_N << " (p A = " << p << "), F_T " << F_T
+        << ", hold " << hold << ", slipping nodes >= " << n_slip_min << " of "
+        << mortar.n_slave() << "\n";
       test_tools::check(m + "normal force = p x area (1 %)", F_N, p, 0.01);
       test_tools::check(m + "friction force = mu N (1 %)", F_T, mu * F_N, 0.01);
-      test_tools::check(m + "the hold balances the friction (2 %)", -hold, F_T,
+      test_tools::check(m + "the hold balances the friction (2 %)",
+                        -hold,
+                        F_T,
                         0.02);
-      test_tools::check(m + "every contact node slips", n_slip_min,
-                        mortar.n_slave(), 0.);
+      test_tools::check(m + "every contact node slips",
+                        n_slip_min,
+                        mortar.n_slave(),
+                        0.);
     }
   return test_tools::finish();
 }

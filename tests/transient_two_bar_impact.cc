@@ -9,13 +9,13 @@
 // lumped 1D chain's 2 c / h within 1 %.
 
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/dofs/dof_tools.h>
 
 #include <squeal/contact/mortar.h>
 #include <squeal/transient/explicit_dynamics.h>
@@ -32,13 +32,17 @@ main(int argc, char **argv)
   using namespace dealii;
   using namespace squeal;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const unsigned int n_el = 50;
-  const double       L = 1., v0 = 0.01, c = 1., h = L / n_el;
+  const unsigned int               n_el = 50;
+  const double                     L = 1., v0 = 0.01, c = 1., h = L / n_el;
 
   Triangulation<3> a, b, tria;
-  GridGenerator::subdivided_hyper_rectangle(a, {n_el, 1, 1}, Point<3>(-L, 0, 0),
+  GridGenerator::subdivided_hyper_rectangle(a,
+                                            {n_el, 1, 1},
+                                            Point<3>(-L, 0, 0),
                                             Point<3>(0, 1, 1));
-  GridGenerator::subdivided_hyper_rectangle(b, {n_el, 1, 1}, Point<3>(0, 0, 0),
+  GridGenerator::subdivided_hyper_rectangle(b,
+                                            {n_el, 1, 1},
+                                            Point<3>(0, 0, 0),
                                             Point<3>(L, 1, 1));
   GridGenerator::merge_triangulations(a, b, tria, 0.); // no shared vertex
   for (const auto &cell : tria.active_cell_iterators())
@@ -61,13 +65,17 @@ main(int argc, char **argv)
   SparsityPattern pattern;
   pattern.copy_from(dsp);
   SparseMatrix<double> K(pattern);
-  assemble_elastic_system(dofs, mapping, none,
-                          [](unsigned int) { return std::make_pair(1., 0.); },
-                          {}, K);
-  const Vector<double> mass = transient::lumped_mass(
-    dofs, mapping, [](const auto &) { return 1.; });
+  assemble_elastic_system(
+    dofs,
+    mapping,
+    none,
+    [](unsigned int) { return std::make_pair(1., 0.); },
+    {},
+    K);
+  const Vector<double> mass =
+    transient::lumped_mass(dofs, mapping, [](const auto &) { return 1.; });
   const std::vector<bool> fixed(dofs.n_dofs(), false);
-  const auto mortar =
+  const auto              mortar =
     contact::build_mortar_operators(dofs, mapping, 10, 11, 1e-3);
 
   const transient::StableTimeStep limit =
@@ -75,10 +83,12 @@ main(int argc, char **argv)
   test_tools::verbose() << "omega_max " << limit.omega_max << " (1D chain "
                         << 2 * c / h << "), dt_c " << limit.critical << "\n";
   test_tools::check("stability limit = h / c of the lumped chain (1 %)",
-                    limit.critical, h / c, 0.01);
+                    limit.critical,
+                    h / c,
+                    0.01);
 
   transient::ExplicitSettings s;
-  s.time_step = 1.01 * limit.critical;
+  s.time_step  = 1.01 * limit.critical;
   bool refused = false;
   try
     {
@@ -86,7 +96,8 @@ main(int argc, char **argv)
     }
   catch (const std::exception &e)
     {
-      refused = std::string(e.what()).find("stability limit") != std::string::npos;
+      refused =
+        std::string(e.what()).find("stability limit") != std::string::npos;
     }
   test_tools::check("a time step above the limit is refused", refused, 1., 0.);
 
@@ -106,11 +117,11 @@ main(int argc, char **argv)
       }
   bars.initialise(u0, vel0);
   const Vector<double> f(dofs.n_dofs());
-  const double         E0 = 0.5 * 1. * v0 * v0; // m = rho A L = 1
-  double t_first = -1, t_last = -1, impulse = 0, f_max = 0;
-  double       f_sum_mid = 0;
-  unsigned int n_mid = 0;
-  const double t_end = 3. * L / c;
+  const double         E0      = 0.5 * 1. * v0 * v0; // m = rho A L = 1
+  double               t_first = -1, t_last = -1, impulse = 0, f_max = 0;
+  double               f_sum_mid = 0;
+  unsigned int         n_mid     = 0;
+  const double         t_end     = 3. * L / c;
   while (bars.time() < t_end)
     {
       bars.step(f);
@@ -131,7 +142,7 @@ main(int argc, char **argv)
         }
     }
   // momenta and velocities of each bar at the end
-  double p_striker = 0, p_struck = 0;
+  double            p_striker = 0, p_struck = 0;
   std::vector<bool> seen(dofs.n_dofs(), false);
   for (const auto &cell : dofs.active_cell_iterators())
     {
@@ -154,9 +165,13 @@ main(int argc, char **argv)
                         << " of " << E0 << "; momenta " << p_striker << ", "
                         << p_struck << "\n";
   test_tools::check("contact force (plateau mean) = rho c A v0 / 2 (1 %)",
-                    f_sum_mid / n_mid, F_exact, 0.01);
+                    f_sum_mid / n_mid,
+                    F_exact,
+                    0.01);
   test_tools::check("impulse = m v0 (1 %)", impulse, 1. * v0, 0.01);
-  test_tools::check("contact duration = 2 L / c (1.5 %)", duration, 2 * L / c,
+  test_tools::check("contact duration = 2 L / c (1.5 %)",
+                    duration,
+                    2 * L / c,
                     0.015);
   test_tools::check("energy conserved (0.5 %)", energy, E0, 0.005);
   test_tools::check("striker stops (1 % of m v0)", p_striker, 0., 0.01, v0);

@@ -1,22 +1,24 @@
-// The HDF5 contact history: the layout written by write_contact_history()
+// The HDF5 contact history: the layout written by io::write_contact_history()
 // round-trips exactly; the synthetic history at its leading inner node with
 // amplitude 1 and unit mean pressure is the C3 history (to rounding); the
 // damage computed from the file equals the damage of the arrays; and corrupt
 // or inconsistent files give one error that names the dataset.
 
-#include <squeal/tribology/contact_history.h>
+#include <squeal/io/contact_history.h>
 #include <squeal/tribology/fatigue.h>
+#include <squeal/tribology/synthetic_history.h>
 
 #include <hdf5.h>
 #include <hdf5_hl.h>
+
+#include "check.h"
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 
-#include "check.h"
-
 using namespace squeal::tribology;
+namespace io = squeal::io;
 using test_tools::check;
 
 namespace
@@ -25,14 +27,14 @@ namespace
   // checks that the error names @p expected.
   template <typename Spoil>
   void
-  expect_error(const std::string    &name,
-               const ContactHistory &h,
-               Spoil               &&spoil,
-               const std::string    &expected)
+  expect_error(const std::string        &name,
+               const io::ContactHistory &h,
+               Spoil                   &&spoil,
+               const std::string        &expected)
   {
     const std::string file = "spoiled_" + name + ".h5";
     std::remove(file.c_str());
-    write_contact_history(file, h);
+    io::write_contact_history(file, h);
     {
       const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
       spoil(f);
@@ -41,7 +43,7 @@ namespace
     std::string message;
     try
       {
-        read_contact_history(file);
+        io::read_contact_history(file);
       }
     catch (const std::exception &e)
       {
@@ -61,23 +63,24 @@ main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
 
   // Amplitude 1 at the leading inner node (node 0), p_mean = 1, mu = 0.4.
-  const ContactHistory h =
+  const io::ContactHistory h =
     synthetic_squeal_history(5, 10000, 1e6, 3400., 1., 0.4, 0.01, 0.1, 0.1);
   {
     double err = 0.;
     for (std::size_t n = 0; n < 10000; ++n)
       {
         const double c3 =
-          std::max(0., 1. + 15. * std::sin(2. * M_PI * 3400. * n / 1e6) +
-                         3. * std::sin(2. * M_PI * 10200. * n / 1e6 + 0.7));
+          std::max(0.,
+                   1. + 15. * std::sin(2. * M_PI * 3400. * n / 1e6) +
+                     3. * std::sin(2. * M_PI * 10200. * n / 1e6 + 0.7));
         err = std::max(err, std::abs(h.p_N[0][n] - c3));
       }
-    check("synthetic history at the leading inner node is C3", err, 0., 1e-11,
-          1.);
+    check(
+      "synthetic history at the leading inner node is C3", err, 0., 1e-11, 1.);
   }
 
-  write_contact_history("history.h5", h);
-  const ContactHistory r = read_contact_history("history.h5");
+  io::write_contact_history("history.h5", h);
+  const io::ContactHistory r = io::read_contact_history("history.h5");
   check("round trip: nodes", r.n_nodes(), h.n_nodes(), 0.);
   check("round trip: samples", r.n_samples(), h.n_samples(), 0.);
   check("round trip: sampling rate", r.sampling_rate, 1e6, 0.);
@@ -86,19 +89,24 @@ main(int argc, char **argv)
   check("round trip: p_N", r.p_N == h.p_N, 1., 0.);
   check("round trip: t_T1", r.t_T1 == h.t_T1, 1., 0.);
   check("round trip: t_T2", r.t_T2 == h.t_T2, 1., 0.);
-  check("round trip: slip velocity", r.slip_velocity == h.slip_velocity, 1., 0.);
+  check("round trip: slip velocity",
+        r.slip_velocity == h.slip_velocity,
+        1.,
+        0.);
   check("round trip: status", r.status == h.status, 1., 0.);
   check("round trip: frame",
         r.sliding_direction == h.sliding_direction &&
           r.radial_direction == h.radial_direction,
-        1., 0.);
+        1.,
+        0.);
   check("C4 D* from the file equals C3's 3.607364580e6",
         findley_damage(r.p_N[0], r.t_T1[0], FindleyParameters()).relative,
-        3.607364580e6, 1e-9);
+        3.607364580e6,
+        1e-9);
   {
     // units are stored as attributes
-    char unit[16] = {0};
-    const hid_t f = H5Fopen("history.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    char        unit[16] = {0};
+    const hid_t f        = H5Fopen("history.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
     H5LTget_attribute_string(f, "/p_N", "unit", unit);
     H5Fclose(f);
     check("p_N carries unit Pa", std::string(unit) == "Pa", 1., 0.);
@@ -107,23 +115,28 @@ main(int argc, char **argv)
   check("leading edge oscillates more than trailing edge",
         *std::max_element(h.p_N.front().begin(), h.p_N.front().end()) >
           2. * *std::max_element(h.p_N.back().begin(), h.p_N.back().end()),
-        1., 0.);
+        1.,
+        0.);
 
   // Corrupt files.
   expect_error(
-    "missing dataset", h,
-    [](hid_t f) { H5Ldelete(f, "/t_T2", H5P_DEFAULT); }, "missing dataset /t_T2");
+    "missing dataset",
+    h,
+    [](hid_t f) { H5Ldelete(f, "/t_T2", H5P_DEFAULT); },
+    "missing dataset /t_T2");
   expect_error(
-    "wrong shape", h,
+    "wrong shape",
+    h,
     [](hid_t f) {
       H5Ldelete(f, "/slip_velocity", H5P_DEFAULT);
-      const hsize_t dims[2] = {3, 7};
+      const hsize_t       dims[2] = {3, 7};
       std::vector<double> zeros(21, 0.);
       H5LTmake_dataset_double(f, "/slip_velocity", 2, dims, zeros.data());
     },
     "dataset /slip_velocity has shape 3 x 7, expected 25 x 10000");
   expect_error(
-    "NaN", h,
+    "NaN",
+    h,
     [&](hid_t f) {
       std::vector<double> flat;
       for (auto row : h.p_N)
@@ -135,7 +148,8 @@ main(int argc, char **argv)
     },
     "dataset /p_N: non-finite value (NaN or Inf) at node 3");
   expect_error(
-    "negative pressure", h,
+    "negative pressure",
+    h,
     [&](hid_t f) {
       std::vector<double> flat;
       for (auto row : h.p_N)
@@ -147,7 +161,8 @@ main(int argc, char **argv)
     },
     "negative contact pressure at node 5");
   expect_error(
-    "bad status", h,
+    "bad status",
+    h,
     [&](hid_t f) {
       std::vector<int> flat(25 * 10000, 1);
       flat[42] = 7;
@@ -157,7 +172,8 @@ main(int argc, char **argv)
     },
     "dataset /status: value 7 at node 0");
   expect_error(
-    "missing attribute", h,
+    "missing attribute",
+    h,
     [](hid_t f) { H5Adelete(f, "sampling_rate"); },
     "missing root attribute sampling_rate");
   {
@@ -165,17 +181,19 @@ main(int argc, char **argv)
     std::string message;
     try
       {
-        read_contact_history("not_hdf5.h5");
+        io::read_contact_history("not_hdf5.h5");
       }
     catch (const std::exception &e)
       {
         message = e.what();
       }
     check("a text file is refused as not HDF5",
-          message.find("not an HDF5 file") != std::string::npos, 1., 0.);
+          message.find("not an HDF5 file") != std::string::npos,
+          1.,
+          0.);
     try
       {
-        read_contact_history("does_not_exist.h5");
+        io::read_contact_history("does_not_exist.h5");
       }
     catch (const std::exception &e)
       {
@@ -183,7 +201,8 @@ main(int argc, char **argv)
       }
     check("a missing file is named",
           message.find("does_not_exist.h5': no such file") != std::string::npos,
-          1., 0.);
+          1.,
+          0.);
   }
   return test_tools::finish();
 }

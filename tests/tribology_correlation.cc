@@ -9,10 +9,10 @@
 
 #include <squeal/tribology/correlation.h>
 
+#include "check.h"
+
 #include <cmath>
 #include <random>
-
-#include "check.h"
 
 using namespace squeal::tribology;
 using test_tools::check;
@@ -28,8 +28,8 @@ namespace
     std::vector<double>              white(n * n);
     for (double &w : white)
       w = N(rng);
-    GridMap m(n, n, 0., 0., 1.);
-    const int reach = int(3 * sigma) + 1;
+    GridMap             m(n, n, 0., 0., 1.);
+    const int           reach = int(3 * sigma) + 1;
     std::vector<double> kernel(2 * reach + 1);
     for (int k = -reach; k <= reach; ++k)
       kernel[k + reach] = std::exp(-0.5 * k * k / (sigma * sigma));
@@ -76,10 +76,14 @@ main(int argc, char **argv)
     check("roc auc (SciPy 0.888889)", roc_auc(s, l), 8. / 9., 1e-12);
     const std::vector<double> tie{0.5, 0.5, 0.5, 0.5};
     check("roc auc with all scores tied = 0.5",
-          roc_auc(tie, std::vector<double>{0., 1., 0., 1.}), 0.5, 1e-15);
+          roc_auc(tie, std::vector<double>{0., 1., 0., 1.}),
+          0.5,
+          1e-15);
     const auto curve = roc_curve(s, l);
     check("roc curve ends at (1, 1)",
-          curve.back().first + curve.back().second, 2., 0.);
+          curve.back().first + curve.back().second,
+          2.,
+          0.);
   }
 
   // Moran's I with queen weights: on a chequerboard every orthogonal pair is
@@ -95,9 +99,12 @@ main(int argc, char **argv)
           chess(i, j) = ((i + j) % 2) ? 1. : -1.;
           ramp(i, j)  = i;
         }
-    const double orth = 2. * 2. * n * (n - 1), diag = 2. * 2. * (n - 1) * (n - 1);
-    check("Moran's I of a chequerboard", morans_i(chess),
-          (diag - orth) / (diag + orth), 1e-14);
+    const double orth = 2. * 2. * n * (n - 1),
+                 diag = 2. * 2. * (n - 1) * (n - 1);
+    check("Moran's I of a chequerboard",
+          morans_i(chess),
+          (diag - orth) / (diag + orth),
+          1e-14);
     // ramp: direct double sum
     double mean = (n - 1) / 2., num = 0., den = 0., w = 0.;
     for (unsigned int j = 0; j < n; ++j)
@@ -108,7 +115,8 @@ main(int argc, char **argv)
             for (int di = -1; di <= 1; ++di)
               {
                 const int ii = int(i) + di, jj = int(j) + dj;
-                if ((di || dj) && ii >= 0 && jj >= 0 && ii < int(n) && jj < int(n))
+                if ((di || dj) && ii >= 0 && jj >= 0 && ii < int(n) &&
+                    jj < int(n))
                   {
                     num += (i - mean) * (ii - mean);
                     w += 1.;
@@ -126,51 +134,65 @@ main(int argc, char **argv)
                        const std::vector<double> &b) { return spearman(a, b); };
     for (int trial = 0; trial < 100; ++trial)
       {
-        const GridMap a = smooth_field(24, 2.5, rng), b = smooth_field(24, 2.5, rng);
+        const GridMap a      = smooth_field(24, 2.5, rng),
+                      b      = smooth_field(24, 2.5, rng);
         const ToroidalTest t = toroidal_test(a, b, sp);
         below += (t.p_value < 0.05);
-        naive_below += naive_p(pearson(a.values, b.values), a.values.size()) <
-                       0.05;
+        naive_below +=
+          naive_p(pearson(a.values, b.values), a.values.size()) < 0.05;
       }
-    test_tools::verbose() << "independent fields: toroidal p < 0.05 in " << below
-              << " of 100 (one-sided), naive two-sided p < 0.05 in "
-              << naive_below << std::endl;
+    test_tools::verbose() << "independent fields: toroidal p < 0.05 in "
+                          << below
+                          << " of 100 (one-sided), naive two-sided p < 0.05 in "
+                          << naive_below << std::endl;
     check("independent fields: toroidal p < 0.05 in fewer than 10 of 100",
-          std::min(below, 9u), below, 0.);
+          std::min(below, 9u),
+          below,
+          0.);
     check("independent fields: naive p-values overconfident (> 20 of 100)",
-          std::max(naive_below, 21u), naive_below, 0.);
+          std::max(naive_below, 21u),
+          naive_below,
+          0.);
   }
 
   // A damage map driving the crack density: found with AUC > 0.7, p < 0.01.
   {
-    std::mt19937  rng(7);
-    const GridMap damage = smooth_field(32, 3., rng);
+    std::mt19937        rng(7);
+    const GridMap       damage = smooth_field(32, 3., rng);
     std::vector<double> sorted(damage.values);
     std::sort(sorted.begin(), sorted.end());
     GridMap cracks = damage.empty_like(), cracked = damage.empty_like();
     for (std::size_t c = 0; c < damage.values.size(); ++c)
       {
-        const double q = double(std::lower_bound(sorted.begin(), sorted.end(),
-                                                 damage.values[c]) -
-                                sorted.begin()) /
-                         (sorted.size() - 1);
+        const double q =
+          double(
+            std::lower_bound(sorted.begin(), sorted.end(), damage.values[c]) -
+            sorted.begin()) /
+          (sorted.size() - 1);
         std::poisson_distribution<int> P(0.05 + 3. * q * q);
         cracks.values[c] = P(rng);
       }
     std::vector<double> c_sorted(cracks.values);
-    std::nth_element(c_sorted.begin(), c_sorted.begin() + c_sorted.size() / 2,
+    std::nth_element(c_sorted.begin(),
+                     c_sorted.begin() + c_sorted.size() / 2,
                      c_sorted.end());
     const double median = c_sorted[c_sorted.size() / 2];
     for (std::size_t c = 0; c < cracks.values.size(); ++c)
       cracked.values[c] = cracks.values[c] > median;
-    const auto au = [](const std::vector<double> &a,
+    const auto         au = [](const std::vector<double> &a,
                        const std::vector<double> &b) { return roc_auc(a, b); };
-    const ToroidalTest t = toroidal_test(damage, cracked, au);
-    test_tools::verbose() << "damage-driven cracks: AUC " << t.observed << ", p "
-              << t.p_value << " over " << t.n_shifts << " shifts" << std::endl;
-    check("damage-driven cracks: AUC > 0.7", std::max(t.observed, 0.7), t.observed, 0.);
-    check("damage-driven cracks: toroidal p < 0.01", std::min(t.p_value, 0.0099),
-          t.p_value, 0.);
+    const ToroidalTest t  = toroidal_test(damage, cracked, au);
+    test_tools::verbose() << "damage-driven cracks: AUC " << t.observed
+                          << ", p " << t.p_value << " over " << t.n_shifts
+                          << " shifts" << std::endl;
+    check("damage-driven cracks: AUC > 0.7",
+          std::max(t.observed, 0.7),
+          t.observed,
+          0.);
+    check("damage-driven cracks: toroidal p < 0.01",
+          std::min(t.p_value, 0.0099),
+          t.p_value,
+          0.);
     check("damage-driven cracks: 1024 shifts", t.n_shifts, 1024., 0.);
   }
 

@@ -61,7 +61,8 @@ namespace squeal
       {
         std::vector<std::size_t> order(x.size());
         std::iota(order.begin(), order.end(), 0);
-        std::sort(order.begin(), order.end(),
+        std::sort(order.begin(),
+                  order.end(),
                   [&](std::size_t i, std::size_t j) { return x[i] < x[j]; });
         std::vector<double> r(x.size());
         for (std::size_t i = 0; i < order.size();)
@@ -77,8 +78,11 @@ namespace squeal
       }
     } // namespace
 
-    GridMap::GridMap(unsigned int nx, unsigned int ny, double x0, double y0,
-                     double h)
+    GridMap::GridMap(unsigned int nx,
+                     unsigned int ny,
+                     double       x0,
+                     double       y0,
+                     double       h)
       : nx(nx)
       , ny(ny)
       , x0(x0)
@@ -125,9 +129,9 @@ namespace squeal
     {
       std::vector<double> s, l;
       finite_pairs(score, label, s, l);
-      const std::vector<double> r = ranks(s);
-      double      rank_sum = 0.;
-      std::size_t n_pos = 0;
+      const std::vector<double> r        = ranks(s);
+      double                    rank_sum = 0.;
+      std::size_t               n_pos    = 0;
       for (std::size_t i = 0; i < s.size(); ++i)
         if (l[i] != 0.)
           {
@@ -148,13 +152,14 @@ namespace squeal
       finite_pairs(score, label, s, l);
       std::vector<std::size_t> order(s.size());
       std::iota(order.begin(), order.end(), 0);
-      std::sort(order.begin(), order.end(),
-                [&](std::size_t i, std::size_t j) { return s[i] > s[j]; });
+      std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+        return s[i] > s[j];
+      });
       double n_pos = 0., n_neg = 0.;
       for (double v : l)
         (v != 0. ? n_pos : n_neg) += 1.;
       std::vector<std::pair<double, double>> curve{{0., 0.}};
-      double tp = 0., fp = 0.;
+      double                                 tp = 0., fp = 0.;
       for (std::size_t k = 0; k < order.size(); ++k)
         {
           (l[order[k]] != 0. ? tp : fp) += 1.;
@@ -169,7 +174,7 @@ namespace squeal
     morans_i(const GridMap &m)
     {
       double      mean = 0.;
-      std::size_t n = 0;
+      std::size_t n    = 0;
       for (double v : m.values)
         if (std::isfinite(v))
           {
@@ -202,11 +207,11 @@ namespace squeal
     }
 
     ToroidalTest
-    toroidal_test(const GridMap &a,
-                  const GridMap &b,
-                  const std::function<double(const std::vector<double> &,
-                                             const std::vector<double> &)>
-                    &statistic)
+    toroidal_test(
+      const GridMap                                            &a,
+      const GridMap                                            &b,
+      const std::function<double(const std::vector<double> &,
+                                 const std::vector<double> &)> &statistic)
     {
       if (a.nx != b.nx || a.ny != b.ny)
         throw std::invalid_argument("toroidal test: maps on different grids");
@@ -218,8 +223,7 @@ namespace squeal
           {
             for (unsigned int j = 0; j < b.ny; ++j)
               for (unsigned int i = 0; i < b.nx; ++i)
-                shifted[i + b.nx * j] =
-                  b((i + di) % b.nx, (j + dj) % b.ny);
+                shifted[i + b.nx * j] = b((i + di) % b.nx, (j + dj) % b.ny);
             const double s = statistic(a.values, shifted);
             if (di == 0 && dj == 0)
               t.observed = s;

@@ -29,8 +29,7 @@ namespace squeal
       if (name == "repeating")
         return Residue::repeating;
       throw std::invalid_argument("unknown rainflow residue convention '" +
-                                  name +
-                                  "' (allowed: half cycles, repeating)");
+                                  name + "' (allowed: half cycles, repeating)");
     }
 
     namespace
@@ -66,8 +65,8 @@ namespace squeal
                  std::size_t                to,
                  double                     count)
       {
-        return {std::abs(x[to] - x[from]), 0.5 * (x[to] + x[from]), count,
-                from, to};
+        return {
+          std::abs(x[to] - x[from]), 0.5 * (x[to] + x[from]), count, from, to};
       }
     } // namespace
 
@@ -88,10 +87,12 @@ namespace squeal
         {
           // Restart the periodic history at its largest absolute value: no
           // range can then stay open, and every cycle is a full one.
-          const auto top = std::max_element(
-            seq.begin(), seq.end(), [&](std::size_t a, std::size_t b) {
-              return std::abs(x[a]) < std::abs(x[b]);
-            });
+          const auto top =
+            std::max_element(seq.begin(),
+                             seq.end(),
+                             [&](std::size_t a, std::size_t b) {
+                               return std::abs(x[a]) < std::abs(x[b]);
+                             });
           std::vector<std::size_t> rotated(top, seq.end());
           rotated.insert(rotated.end(), seq.begin(), top + 1);
           seq = turning_points(x, rotated);
@@ -105,8 +106,8 @@ namespace squeal
           while (stack.size() >= 3)
             {
               const std::size_t n = stack.size();
-              const double X = std::abs(x[stack[n - 1]] - x[stack[n - 2]]);
-              const double Y = std::abs(x[stack[n - 2]] - x[stack[n - 3]]);
+              const double      X = std::abs(x[stack[n - 1]] - x[stack[n - 2]]);
+              const double      Y = std::abs(x[stack[n - 2]] - x[stack[n - 3]]);
               if (X < Y)
                 break;
               if (n == 3 && residue == Residue::half_cycles)
@@ -190,7 +191,8 @@ namespace squeal
       Circle
       circle_of(const Point &a, const Point &b)
       {
-        return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]),
+        return {0.5 * (a[0] + b[0]),
+                0.5 * (a[1] + b[1]),
                 0.5 * std::hypot(a[0] - b[0], a[1] - b[1])};
       }
 
@@ -199,7 +201,7 @@ namespace squeal
       {
         const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0],
                      cy = c[1] - a[1];
-        const double d = 2. * (bx * cy - by * cx);
+        const double d  = 2. * (bx * cy - by * cx);
         if (std::abs(d) < 1e-300)
           {
             // collinear: the circle on the two farthest points
@@ -209,8 +211,12 @@ namespace squeal
                 best = k;
             return best;
           }
-        const double ux = (cy * (bx * bx + by * by) - by * (cx * cx + cy * cy)) / d,
-                     uy = (bx * (cx * cx + cy * cy) - cx * (bx * bx + by * by)) / d;
+        const double ux =
+                       (cy * (bx * bx + by * by) - by * (cx * cx + cy * cy)) /
+                       d,
+                     uy =
+                       (bx * (cx * cx + cy * cy) - cx * (bx * bx + by * by)) /
+                       d;
         return {a[0] + ux, a[1] + uy, std::hypot(ux, uy)};
       }
 
@@ -255,7 +261,7 @@ namespace squeal
       if (p.empty())
         return c;
       // Deviatoric plane coordinates with sqrt(J2) as Euclidean length.
-      const double a = std::sqrt(3.) * (1. - 2. * nu) / (3. * (1. - nu));
+      const double a     = std::sqrt(3.) * (1. - 2. * nu) / (3. * (1. - nu));
       double       scale = 0.;
       for (std::size_t i = 0; i < p.size(); ++i)
         scale = std::max({scale, std::abs(a * p[i]), std::abs(q[i])});
@@ -267,8 +273,8 @@ namespace squeal
           c.sqrt_j2_amplitude = min_enclosing_radius(path) * scale;
         }
       const double p_min = *std::min_element(p.begin(), p.end());
-      c.hydrostatic_max = -(1. + nu) / (3. * (1. - nu)) * p_min;
-      c.index = c.sqrt_j2_amplitude + alpha * c.hydrostatic_max;
+      c.hydrostatic_max  = -(1. + nu) / (3. * (1. - nu)) * p_min;
+      c.index            = c.sqrt_j2_amplitude + alpha * c.hydrostatic_max;
       return c;
     }
 
@@ -285,7 +291,7 @@ namespace squeal
           "lengths");
       NodeStatistics s;
       const auto [lo, hi] = std::minmax_element(p.begin(), p.end());
-      double sum = 0.;
+      double sum          = 0.;
       for (const double v : p)
         sum += v;
       s.mean_pressure = sum / p.size();
@@ -301,7 +307,7 @@ namespace squeal
       s.separated_fraction /= p.size();
       s.stick_fraction /= p.size();
       s.slip_fraction /= p.size();
-      const std::vector<Cycle> cycles = rainflow(p, Residue::half_cycles);
+      const std::vector<Cycle> cycles  = rainflow(p, Residue::half_cycles);
       double                   largest = 0.;
       for (const Cycle &c : cycles)
         largest = std::max(largest, c.range);

@@ -2,7 +2,8 @@
 // and exfoliation maps from SEM images, and their correlation. Usage:
 //   squeal-tribology [--overwrite] [--output DIR] FILE.prm   run
 //   squeal-tribology --validate FILE.prm      parse and report, run nothing
-//   squeal-tribology --print-parameters       every parameter: default, range, help
+//   squeal-tribology --print-parameters       every parameter: default, range,
+//   help
 
 #include <squeal/tribology/tribology_analysis.h>
 
@@ -21,7 +22,7 @@ main(int argc, char **argv)
   try
     {
       squeal::tribology::TribologyParameters prm;
-      dealii::ParameterHandler                handler;
+      dealii::ParameterHandler               handler;
       if (args.size() == 1 && args[0] == "--print-parameters")
         {
           prm.declare_parameters(handler);
@@ -56,9 +57,9 @@ main(int argc, char **argv)
         prm.output.directory = output;
       if (validate)
         {
-          std::cout << file << ": valid (contact history '"
-                    << prm.history.file << "', " << prm.images.files.size()
-                    << " image entr" << (prm.images.files.size() == 1 ? "y" : "ies")
+          std::cout << file << ": valid (contact history '" << prm.history.file
+                    << "', " << prm.images.files.size() << " image entr"
+                    << (prm.images.files.size() == 1 ? "y" : "ies")
                     << ", output to " << prm.output.directory << ")"
                     << std::endl;
           return 0;

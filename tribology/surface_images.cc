@@ -71,8 +71,8 @@ namespace squeal
       CV_Assert(image.type() == CV_32F);
       const int    n_terms = (degree + 1) * (degree + 2) / 2;
       const int    step = std::max(1, std::min(image.rows, image.cols) / 160);
-      const double sx = 2. / std::max(1, image.cols - 1),
-                   sy = 2. / std::max(1, image.rows - 1);
+      const double sx   = 2. / std::max(1, image.cols - 1),
+                   sy   = 2. / std::max(1, image.rows - 1);
       std::vector<cv::Point> samples;
       for (int r = 0; r < image.rows; r += step)
         for (int c = 0; c < image.cols; c += step)
@@ -80,11 +80,13 @@ namespace squeal
       cv::Mat A(samples.size(), n_terms, CV_64F), b(samples.size(), 1, CV_64F);
       for (std::size_t k = 0; k < samples.size(); ++k)
         {
-          monomials(samples[k].x * sx - 1., samples[k].y * sy - 1., degree,
+          monomials(samples[k].x * sx - 1.,
+                    samples[k].y * sy - 1.,
+                    degree,
                     A.ptr<double>(k));
           b.at<double>(k) = image.at<float>(samples[k]);
         }
-      cv::Mat coef;
+      cv::Mat           coef;
       std::vector<char> use(samples.size(), 1);
       for (int pass = 0; pass < 3; ++pass)
         {
@@ -97,8 +99,8 @@ namespace squeal
               }
           cv::solve(As, bs, coef, cv::DECOMP_QR);
           const cv::Mat res = b - A * coef;
-          double        ss = 0.;
-          int           n = 0;
+          double        ss  = 0.;
+          int           n   = 0;
           for (std::size_t k = 0; k < samples.size(); ++k)
             if (use[k])
               {
@@ -109,7 +111,7 @@ namespace squeal
           for (std::size_t k = 0; k < samples.size(); ++k)
             use[k] = std::abs(res.at<double>(k)) <= 2.5 * sd;
         }
-      cv::Mat            out(image.size(), CV_32F);
+      cv::Mat             out(image.size(), CV_32F);
       std::vector<double> m(n_terms);
       double              mean_fit = 0.;
       for (int r = 0; r < image.rows; ++r)
@@ -139,24 +141,23 @@ namespace squeal
       for (const double s : sigmas)
         {
           cv::Mat g, dxx, dyy, dxy;
-          cv::GaussianBlur(image, g, cv::Size(0, 0), s, s,
-                           cv::BORDER_REFLECT);
+          cv::GaussianBlur(image, g, cv::Size(0, 0), s, s, cv::BORDER_REFLECT);
           // 3x3 Sobel second derivatives carry a factor 4 of smoothing
           // weight; sigma^2 normalises across scales.
           const double f = s * s / 4.;
           cv::Sobel(g, dxx, CV_32F, 2, 0, 3, f, 0., cv::BORDER_REFLECT);
           cv::Sobel(g, dyy, CV_32F, 0, 2, 3, f, 0., cv::BORDER_REFLECT);
           cv::Sobel(g, dxy, CV_32F, 1, 1, 3, f, 0., cv::BORDER_REFLECT);
-          cv::Mat l1(image.size(), CV_32F), l2(image.size(), CV_32F);
+          cv::Mat            l1(image.size(), CV_32F), l2(image.size(), CV_32F);
           std::vector<float> norms;
           norms.reserve(image.total());
           for (int r = 0; r < image.rows; ++r)
             for (int c = 0; c < image.cols; ++c)
               {
                 const float a = dxx.at<float>(r, c), d = dyy.at<float>(r, c),
-                            b = dxy.at<float>(r, c);
+                            b    = dxy.at<float>(r, c);
                 const float root = std::sqrt((a - d) * (a - d) + 4.f * b * b);
-                float       m1 = 0.5f * (a + d + root), m2 = 0.5f * (a + d - root);
+                float m1 = 0.5f * (a + d + root), m2 = 0.5f * (a + d - root);
                 if (std::abs(m1) > std::abs(m2))
                   std::swap(m1, m2);
                 l1.at<float>(r, c) = m1;
@@ -170,7 +171,8 @@ namespace squeal
           // floor (a multiple of the median norm, which the background
           // sets) is no ridge at all.
           std::vector<float> sorted(norms);
-          std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2,
+          std::nth_element(sorted.begin(),
+                           sorted.begin() + sorted.size() / 2,
                            sorted.end());
           const float floor =
             static_cast<float>(noise_floor) * sorted[sorted.size() / 2];
@@ -192,8 +194,8 @@ namespace squeal
                 const double rb = m1 / m2, ss = m1 * m1 + m2 * m2;
                 if (ss < double(floor) * floor)
                   continue;
-                const float  v = static_cast<float>(
-                  std::exp(-rb * rb / b2) * (1. - std::exp(-ss / c2)));
+                const float v = static_cast<float>(std::exp(-rb * rb / b2) *
+                                                   (1. - std::exp(-ss / c2)));
                 best.at<float>(r, c) = std::max(best.at<float>(r, c), v);
               }
         }
@@ -290,8 +292,8 @@ namespace squeal
       // Vossepoel & Smeulders (CGIP 1982): even (orthogonal) and odd
       // (diagonal) chain links and corners (changes of direction).
       const double w_e = 0.980, w_o = 1.406, w_c = -0.091;
-      cv::Mat      share = cv::Mat::zeros(skel.size(), CV_32F);
-      double       total = 0.;
+      cv::Mat      share  = cv::Mat::zeros(skel.size(), CV_32F);
+      double       total  = 0.;
       const auto   linked = [&](int r, int c, int dr, int dc) {
         if (!on(skel, r + dr, c + dc))
           return false;
@@ -316,8 +318,8 @@ namespace squeal
                     dir[n_links][1] = dc;
                     ++n_links;
                   }
-            if (n_links == 2 && (dir[0][0] != -dir[1][0] ||
-                                 dir[0][1] != -dir[1][1]))
+            if (n_links == 2 &&
+                (dir[0][0] != -dir[1][0] || dir[0][1] != -dir[1][1]))
               own += w_c;
             share.at<float>(r, c) = static_cast<float>(own);
             total += own;
@@ -339,9 +341,9 @@ namespace squeal
           return hi;
         cv::Mat u8;
         img.convertTo(u8, CV_8U, 255. / (hi - lo), -255. * lo / (hi - lo));
-        cv::Mat dummy;
-        const double t = cv::threshold(u8, dummy, 0, 255,
-                                       cv::THRESH_BINARY | cv::THRESH_OTSU);
+        cv::Mat      dummy;
+        const double t =
+          cv::threshold(u8, dummy, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
         return lo + t * (hi - lo) / 255.;
       }
 
@@ -366,10 +368,10 @@ namespace squeal
                   const cv::Mat         &exclude)
     {
       const cv::Mat flat = flatten_background(image, par.background_degree);
-      const cv::Mat v = frangi_vesselness(flat, par.scales, par.beta, par.dark,
-                                          par.noise_floor);
-      CrackMap      out;
-      cv::Mat       mask = v > otsu_threshold(v);
+      const cv::Mat v    = frangi_vesselness(
+        flat, par.scales, par.beta, par.dark, par.noise_floor);
+      CrackMap out;
+      cv::Mat  mask = v > otsu_threshold(v);
       if (!exclude.empty())
         mask.setTo(0, exclude);
       cv::Mat skel;
@@ -378,8 +380,8 @@ namespace squeal
       cv::Mat per_pixel;
       skeleton_length(skel, &per_pixel);
       cv::Mat   labels, stats, centroids;
-      const int n = cv::connectedComponentsWithStats(skel, labels, stats,
-                                                     centroids, 8, CV_32S);
+      const int n = cv::connectedComponentsWithStats(
+        skel, labels, stats, centroids, 8, CV_32S);
       std::vector<double> length(n, 0.);
       for (int r = 0; r < skel.rows; ++r)
         for (int c = 0; c < skel.cols; ++c)
@@ -408,8 +410,7 @@ namespace squeal
     }
 
     ExfoliationMap
-    detect_exfoliations(const cv::Mat               &image,
-                        const ExfoliationParameters &par)
+    detect_exfoliations(const cv::Mat &image, const ExfoliationParameters &par)
     {
       cv::Mat f = flatten_background(image, par.background_degree);
       if (par.dark)
@@ -417,24 +418,27 @@ namespace squeal
       // Otsu separates surface from blobs; cut at the midpoint of the two
       // classes' medians so blurred edges are split at half contrast.
       const cv::Mat first = f > otsu_threshold(f);
-      const double  t = 0.5 * (median_where(f, first, true) +
-                              median_where(f, first, false));
-      cv::Mat       mask = f > t;
-      const int     r = static_cast<int>(par.opening_radius);
+      const double  t =
+        0.5 * (median_where(f, first, true) + median_where(f, first, false));
+      cv::Mat   mask = f > t;
+      const int r    = static_cast<int>(par.opening_radius);
       if (r > 0)
-        cv::morphologyEx(mask, mask, cv::MORPH_OPEN,
-                         cv::getStructuringElement(cv::MORPH_ELLIPSE,
-                                                   cv::Size(2 * r + 1,
-                                                            2 * r + 1)));
+        cv::morphologyEx(mask,
+                         mask,
+                         cv::MORPH_OPEN,
+                         cv::getStructuringElement(
+                           cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1)));
       // Fill holes: everything not reachable from the border outside.
       std::vector<std::vector<cv::Point>> contours;
-      cv::findContours(mask.clone(), contours, cv::RETR_EXTERNAL,
+      cv::findContours(mask.clone(),
+                       contours,
+                       cv::RETR_EXTERNAL,
                        cv::CHAIN_APPROX_NONE);
       cv::Mat filled = cv::Mat::zeros(mask.size(), CV_8U);
       cv::drawContours(filled, contours, -1, 255, cv::FILLED);
       cv::Mat   labels, stats, centroids;
-      const int n = cv::connectedComponentsWithStats(filled, labels, stats,
-                                                     centroids, 8, CV_32S);
+      const int n = cv::connectedComponentsWithStats(
+        filled, labels, stats, centroids, 8, CV_32S);
       ExfoliationMap out;
       out.mask = cv::Mat::zeros(mask.size(), CV_8U);
       std::vector<char> keep(n, 0);
@@ -463,9 +467,9 @@ namespace squeal
     {
       if (!(bar_length > 0.))
         throw std::invalid_argument("scale bar length must be positive");
-      const int     top = image.rows - std::max(1, image.rows * 15 / 100);
+      const int     top   = image.rows - std::max(1, image.rows * 15 / 100);
       const cv::Mat strip = image.rowRange(top, image.rows);
-      double        best = 0.;
+      double        best  = 0.;
       for (const bool bright : {true, false})
         {
           const cv::Mat sat = bright ? (strip > 0.95f) : (strip < 0.05f);
@@ -477,8 +481,8 @@ namespace squeal
               const int w = stats.at<int>(l, cv::CC_STAT_WIDTH),
                         h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
               // a filled bar: wide, thin, and (nearly) a full rectangle
-              if (w >= 8 * h && stats.at<int>(l, cv::CC_STAT_AREA) >=
-                                  0.8 * w * h)
+              if (w >= 8 * h &&
+                  stats.at<int>(l, cv::CC_STAT_AREA) >= 0.8 * w * h)
                 best = std::max(best, double(w));
             }
         }
@@ -527,9 +531,12 @@ namespace squeal
       if (!cv::solve(A, B, X, cv::DECOMP_SVD) ||
           std::abs(cv::determinant(A.t() * A)) < 1e-30)
         throw std::invalid_argument("fiducials: the points are collinear");
-      return cv::Matx23d(X.at<double>(0, 0), X.at<double>(1, 0),
-                         X.at<double>(2, 0), X.at<double>(0, 1),
-                         X.at<double>(1, 1), X.at<double>(2, 1));
+      return cv::Matx23d(X.at<double>(0, 0),
+                         X.at<double>(1, 0),
+                         X.at<double>(2, 0),
+                         X.at<double>(0, 1),
+                         X.at<double>(1, 1),
+                         X.at<double>(2, 1));
     }
 
     cv::Matx23d
@@ -542,11 +549,16 @@ namespace squeal
       warp.convertTo(warp, CV_32F);
       try
         {
-          cv::findTransformECC(reference, image, warp, cv::MOTION_EUCLIDEAN,
+          cv::findTransformECC(reference,
+                               image,
+                               warp,
+                               cv::MOTION_EUCLIDEAN,
                                cv::TermCriteria(cv::TermCriteria::COUNT +
                                                   cv::TermCriteria::EPS,
-                                                200, 1e-8),
-                               cv::noArray(), gauss_filter_size);
+                                                200,
+                                                1e-8),
+                               cv::noArray(),
+                               gauss_filter_size);
         }
       catch (const cv::Exception &e)
         {
@@ -572,13 +584,14 @@ namespace squeal
     {
       const int  ss = 4, shift = 4; // supersampling; sub-pixel drawing bits
       const auto fix = [&](const cv::Point2d &p) {
-        return cv::Point(cvRound((p.x + 0.5) * ss * (1 << shift) - 0.5 * (1 << shift)),
-                         cvRound((p.y + 0.5) * ss * (1 << shift) - 0.5 * (1 << shift)));
+        return cv::Point(
+          cvRound((p.x + 0.5) * ss * (1 << shift) - 0.5 * (1 << shift)),
+          cvRound((p.y + 0.5) * ss * (1 << shift) - 0.5 * (1 << shift)));
       };
       SyntheticSurface out;
       cv::Mat          hi_cracks = cv::Mat::zeros(size * ss, CV_8U),
-              hi_blobs = cv::Mat::zeros(size * ss, CV_8U);
-      out.centre_lines = cv::Mat::zeros(size, CV_8U);
+              hi_blobs           = cv::Mat::zeros(size * ss, CV_8U);
+      out.centre_lines           = cv::Mat::zeros(size, CV_8U);
       for (const auto &c : cracks)
         {
           std::vector<cv::Point> hi, lo;
@@ -589,19 +602,27 @@ namespace squeal
               if (i)
                 out.crack_length += cv::norm(c.points[i] - c.points[i - 1]);
             }
-          cv::polylines(hi_cracks, hi, false, 255,
-                        std::max(1, cvRound(c.width * ss)), cv::LINE_8, shift);
+          cv::polylines(hi_cracks,
+                        hi,
+                        false,
+                        255,
+                        std::max(1, cvRound(c.width * ss)),
+                        cv::LINE_8,
+                        shift);
           cv::polylines(out.centre_lines, lo, false, 255, 1, cv::LINE_8);
         }
       for (const auto &b : blobs)
         {
           cv::ellipse(hi_blobs,
                       cv::RotatedRect(cv::Point2f((b.centre.x + 0.5) * ss - 0.5,
-                                                  (b.centre.y + 0.5) * ss - 0.5),
+                                                  (b.centre.y + 0.5) * ss -
+                                                    0.5),
                                       cv::Size2f(2 * b.semi_axes.width * ss,
                                                  2 * b.semi_axes.height * ss),
                                       b.angle),
-                      255, cv::FILLED, cv::LINE_8);
+                      255,
+                      cv::FILLED,
+                      cv::LINE_8);
           out.blob_area += M_PI * b.semi_axes.width * b.semi_axes.height;
         }
       cv::Mat cov_c, cov_b;
@@ -616,15 +637,15 @@ namespace squeal
           {
             const double u = double(c) / size.width - 0.5,
                          v = double(r) / size.height - 0.5;
-            const double bg = 0.5 + gradient * (0.5 * (u + v) +
-                                                0.5 * (u * u + v * v) - 0.083);
+            const double bg =
+              0.5 + gradient * (0.5 * (u + v) + 0.5 * (u * u + v * v) - 0.083);
             img.at<float>(r, c) = static_cast<float>(
-              bg - contrast * std::max(cov_c.at<float>(r, c),
-                                       cov_b.at<float>(r, c)));
+              bg - contrast *
+                     std::max(cov_c.at<float>(r, c), cov_b.at<float>(r, c)));
           }
       if (blur > 0.)
-        cv::GaussianBlur(img, img, cv::Size(0, 0), blur, blur,
-                         cv::BORDER_REFLECT);
+        cv::GaussianBlur(
+          img, img, cv::Size(0, 0), blur, blur, cv::BORDER_REFLECT);
       if (noise > 0.)
         {
           cv::RNG rng(seed);
@@ -643,7 +664,10 @@ namespace squeal
     {
       const auto within = [&](const cv::Mat &from, const cv::Mat &to) {
         cv::Mat dist;
-        cv::distanceTransform(to == 0, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+        cv::distanceTransform(to == 0,
+                              dist,
+                              cv::DIST_L2,
+                              cv::DIST_MASK_PRECISE);
         double hit = 0., all = 0.;
         for (int r = 0; r < from.rows; ++r)
           for (int c = 0; c < from.cols; ++c)
@@ -673,8 +697,10 @@ namespace squeal
       if (!exfoliations.mask.empty())
         {
           std::vector<std::vector<cv::Point>> contours;
-          cv::findContours(exfoliations.mask.clone(), contours,
-                           cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+          cv::findContours(exfoliations.mask.clone(),
+                           contours,
+                           cv::RETR_EXTERNAL,
+                           cv::CHAIN_APPROX_NONE);
           cv::drawContours(colour, contours, -1, cv::Scalar(255, 255, 0), 2);
         }
       if (!cracks.skeleton.empty())

@@ -50,17 +50,18 @@ namespace squeal
       PETScVector
       make_vector(const PETScMatrix &A)
       {
-        PETScVector v(A.locally_owned_range_indices(), A.get_mpi_communicator());
+        PETScVector v(A.locally_owned_range_indices(),
+                      A.get_mpi_communicator());
         return v;
       }
     } // namespace
 
     std::vector<UndampedMode>
-    solve_undamped(const PETScMatrix &M,
-                   const PETScMatrix &K,
-                   const BandOptions &options,
-                   const double       factor,
-                   const bool         symmetric,
+    solve_undamped(const PETScMatrix  &M,
+                   const PETScMatrix  &K,
+                   const BandOptions  &options,
+                   const double        factor,
+                   const bool          symmetric,
                    ConditionalOStream &pcout)
     {
       const double   w_t    = 2. * numbers::PI * options.target_frequency;
@@ -110,7 +111,8 @@ namespace squeal
           EPSDestroy(&eps);
           if (farthest >= needed || nconv >= n)
             {
-              std::sort(modes.begin(), modes.end(),
+              std::sort(modes.begin(),
+                        modes.end(),
                         [](const auto &a, const auto &b) {
                           return a.omega2.real() < b.omega2.real();
                         });
@@ -127,7 +129,7 @@ namespace squeal
           // The count of modes grows roughly linearly with omega for
           // plate-like structures (omega^2 ratio square-rooted); aim beyond.
           const double ratio = farthest > 0 ? std::sqrt(needed / farthest) : 2.;
-          nev = std::min<PetscInt>(
+          nev                = std::min<PetscInt>(
             n, std::max<PetscInt>(nev + 10, nconv * ratio * 1.25 + 10));
           pcout << "  undamped eigensolver: band not covered, asking for "
                 << nev << " eigenvalues" << std::endl;

@@ -15,9 +15,20 @@
 #include <stdexcept>
 
 extern "C" void
-dgeev_(const char *jobvl, const char *jobvr, const int *n, double *a,
-       const int *lda, double *wr, double *wi, double *vl, const int *ldvl,
-       double *vr, const int *ldvr, double *work, const int *lwork, int *info);
+dgeev_(const char *jobvl,
+       const char *jobvr,
+       const int  *n,
+       double     *a,
+       const int  *lda,
+       double     *wr,
+       double     *wi,
+       double     *vl,
+       const int  *ldvl,
+       double     *vr,
+       const int  *ldvr,
+       double     *work,
+       const int  *lwork,
+       int        *info);
 
 namespace squeal
 {
@@ -30,8 +41,8 @@ namespace squeal
       void
       sum_over_ranks(Eigen::MatrixXd &A, MPI_Comm comm)
       {
-        MPI_Allreduce(MPI_IN_PLACE, A.data(), A.size(), MPI_DOUBLE, MPI_SUM,
-                      comm);
+        MPI_Allreduce(
+          MPI_IN_PLACE, A.data(), A.size(), MPI_DOUBLE, MPI_SUM, comm);
       }
 
       // A * B for a sparse PETSc matrix and the locally owned rows of a
@@ -41,10 +52,14 @@ namespace squeal
       {
         const PetscInt n_local = B.rows(), m = B.cols();
         Mat            Bd, W;
-        if (MatCreateDense(A.get_mpi_communicator(), n_local, PETSC_DECIDE,
-                           A.m(), m,
+        if (MatCreateDense(A.get_mpi_communicator(),
+                           n_local,
+                           PETSC_DECIDE,
+                           A.m(),
+                           m,
                            // PETSc only reads B
-                           const_cast<double *>(B.data()), &Bd) != 0 ||
+                           const_cast<double *>(B.data()),
+                           &Bd) != 0 ||
             MatMatMult(A, Bd, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &W) != 0)
           throw std::runtime_error("reduced model: MatMatMult failed");
         const PetscScalar *w;
@@ -108,12 +123,12 @@ namespace squeal
     }
 
     void
-    ReducedModel::build(const physics::MatrixParts &                model,
+    ReducedModel::build(const physics::MatrixParts                 &model,
                         const std::vector<parameters::ScalarPoint> &samples,
-                        const BandOptions &                         band,
+                        const BandOptions                          &band,
                         const double                                band_factor,
-                        const unsigned int enrichment_depth,
-                        ConditionalOStream &                        pcout)
+                        const unsigned int  enrichment_depth,
+                        ConditionalOStream &pcout)
     {
       make_reference_mass(model);
       std::vector<Eigen::VectorXd> columns;
@@ -128,8 +143,8 @@ namespace squeal
                 << samples.size() << " (pad modulus " << s.E_pad
                 << " Pa, interface stiffness " << s.interface_stiffness
                 << " N/m^3, spring stiffness " << s.spring_stiffness
-                << " N/m, support density " << s.support_density
-                << " kg/m^3)" << std::endl;
+                << " N/m, support density " << s.support_density << " kg/m^3)"
+                << std::endl;
           const auto modes =
             solve_undamped(M, K, sample_band, band_factor, true, pcout);
           // the next sample has about as many modes: ask for them at once
@@ -181,7 +196,7 @@ namespace squeal
     }
 
     void
-    ReducedModel::build_from_vectors(const physics::MatrixParts &    model,
+    ReducedModel::build_from_vectors(const physics::MatrixParts     &model,
                                      const std::vector<PETScVector> &vectors,
                                      const bool with_residuals)
     {
@@ -193,7 +208,7 @@ namespace squeal
     }
 
     void
-    ReducedModel::enrich(const physics::MatrixParts &    model,
+    ReducedModel::enrich(const physics::MatrixParts     &model,
                          const std::vector<PETScVector> &vectors,
                          const bool                      with_residuals)
     {
@@ -242,28 +257,29 @@ namespace squeal
         if (!active[k])
           Ar[k] = Eigen::MatrixXd::Zero(r + q, r + q);
         else
-        {
-          Eigen::MatrixXd WN = multiply(*model.matrix[k], Nn);
-          Eigen::MatrixXd top = V.transpose() * WN, left = Nn.transpose() * W[k],
-                          corner = Nn.transpose() * WN;
-          sum_over_ranks(top, comm);
-          sum_over_ranks(left, comm);
-          sum_over_ranks(corner, comm);
-          Eigen::MatrixXd A(r + q, r + q);
-          A << Ar[k], top, left, corner;
-          Ar[k] = A;
-          Eigen::MatrixXd Wk(W[k].rows(), r + q);
-          Wk << W[k], WN;
-          W[k] = Wk;
-        }
+          {
+            Eigen::MatrixXd WN     = multiply(*model.matrix[k], Nn);
+            Eigen::MatrixXd top    = V.transpose() * WN,
+                            left   = Nn.transpose() * W[k],
+                            corner = Nn.transpose() * WN;
+            sum_over_ranks(top, comm);
+            sum_over_ranks(left, comm);
+            sum_over_ranks(corner, comm);
+            Eigen::MatrixXd A(r + q, r + q);
+            A << Ar[k], top, left, corner;
+            Ar[k] = A;
+            Eigen::MatrixXd Wk(W[k].rows(), r + q);
+            Wk << W[k], WN;
+            W[k] = Wk;
+          }
       Eigen::MatrixXd Vn(V.rows(), r + q);
       Vn << V, Nn;
-      V  = Vn;
+      V = Vn;
     }
 
     void
     ReducedModel::project(const physics::MatrixParts &model,
-                          Eigen::MatrixXd &           B,
+                          Eigen::MatrixXd            &B,
                           const bool                  with_residuals)
     {
       // Orthonormalise first, so that the sparse products act on the kept
@@ -304,11 +320,16 @@ namespace squeal
       // The relative residual of (lambda, x = re + i im) and its real and
       // imaginary parts r = (lambda^2 M + lambda C + K) x.
       double
-      residual(const PETScMatrix &M, const PETScMatrix &C, const PETScMatrix &K,
-               const std::complex<double> lambda, const PETScVector &re,
-               const PETScVector &im, PETScVector &r_re, PETScVector &r_im)
+      residual(const PETScMatrix         &M,
+               const PETScMatrix         &C,
+               const PETScMatrix         &K,
+               const std::complex<double> lambda,
+               const PETScVector         &re,
+               const PETScVector         &im,
+               PETScVector               &r_re,
+               PETScVector               &r_im)
       {
-        const double a = lambda.real(), b = lambda.imag();
+        const double               a = lambda.real(), b = lambda.imag();
         const std::complex<double> l2 = lambda * lambda;
         PETScVector Mr(re), Mi(re), Cr(re), Ci(re), Kr(re), Ki(re);
         M.vmult(Mr, re);
@@ -326,25 +347,25 @@ namespace squeal
         const auto norm = [](const PETScVector &x, const PETScVector &y) {
           return std::sqrt(x.norm_sqr() + y.norm_sqr());
         };
-        return norm(r_re, r_im) / (std::norm(lambda) * norm(Mr, Mi) +
-                                   std::abs(lambda) * norm(Cr, Ci) +
-                                   norm(Kr, Ki));
+        return norm(r_re, r_im) /
+               (std::norm(lambda) * norm(Mr, Mi) +
+                std::abs(lambda) * norm(Cr, Ci) + norm(Kr, Ki));
       }
     } // namespace
 
     std::vector<EigenPair>
-    solve_full(const physics::MatrixParts &   model,
+    solve_full(const physics::MatrixParts    &model,
                const parameters::ScalarPoint &point,
-               const BandOptions &            band,
-               ConditionalOStream &           pcout)
+               const BandOptions             &band,
+               ConditionalOStream            &pcout)
     {
       PETScMatrix M, K, C;
       model.mass(point, M);
       model.stiffness(point, K);
       model.damping(point, C);
-      const bool symmetric =
-        point.mu == 0. || point.interface_stiffness == 0. ||
-        model.friction().frobenius_norm() == 0.;
+      const bool symmetric = point.mu == 0. ||
+                             point.interface_stiffness == 0. ||
+                             model.friction().frobenius_norm() == 0.;
       const auto modes = solve_undamped(M, K, band, 1.5, symmetric, pcout);
       std::vector<PETScVector> vectors;
       for (const auto &m : modes)
@@ -354,7 +375,7 @@ namespace squeal
             vectors.push_back(m.im);
         }
 
-      const double tolerance = 1e-8;
+      const double                  tolerance = 1e-8;
       std::unique_ptr<DirectSolver> preconditioner;
       PETScMatrix                   P;
       std::vector<EigenPair>        pairs;
@@ -363,18 +384,16 @@ namespace squeal
       for (unsigned int round = 0;; ++round)
         {
           pairs.clear();
-          double worst = 0;
+          double                   worst = 0;
           std::vector<PETScVector> corrections;
-          for (const auto &r :
-               projected.solve(point, band.f_min, band.f_max))
+          for (const auto &r : projected.solve(point, band.f_min, band.f_max))
             {
               EigenPair p;
               p.lambda = r.lambda;
               projected.expand(r.q, p.re, p.im);
               PETScVector r_re(p.re), r_im(p.re);
-              p.residual = residual(M, C, K, p.lambda, p.re, p.im,
-                                    r_re, r_im);
-              worst = std::max(worst, p.residual);
+              p.residual = residual(M, C, K, p.lambda, p.re, p.im, r_re, r_im);
+              worst      = std::max(worst, p.residual);
               if (p.residual > tolerance)
                 {
                   corrections.push_back(std::move(r_re));
@@ -385,9 +404,8 @@ namespace squeal
           if (corrections.empty() || round == 6)
             {
               pcout << "  full solver: " << pairs.size()
-                    << " modes in the band, largest relative residual "
-                    << worst << " after " << round << " refinement rounds"
-                    << std::endl;
+                    << " modes in the band, largest relative residual " << worst
+                    << " after " << round << " refinement rounds" << std::endl;
               return pairs;
             }
           if (!preconditioner)
@@ -410,19 +428,13 @@ namespace squeal
         }
     }
 
-    double
-    ReducedModel::mac(const Eigen::VectorXcd &a, const Eigen::VectorXcd &b)
-    {
-      return std::norm(a.dot(b)) / (a.squaredNorm() * b.squaredNorm());
-    }
-
     std::vector<ReducedEigenPair>
     ReducedModel::solve(const parameters::ScalarPoint &point,
                         const double                   f_min,
                         const double                   f_max) const
     {
-      const int  r = V.cols();
-      const auto c = parts.coefficients(point);
+      const int  r       = V.cols();
+      const auto c       = parts.coefficients(point);
       const auto combine = [&](const physics::MatrixParts::Coefficients &a) {
         Eigen::MatrixXd A = Eigen::MatrixXd::Zero(r, r);
         for (unsigned int k = 0; k < n_parts; ++k)
@@ -434,7 +446,7 @@ namespace squeal
                             C = combine(c.damping);
       const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
 
-      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * r, 2 * r);
+      Eigen::MatrixXd A         = Eigen::MatrixXd::Zero(2 * r, 2 * r);
       A.topRightCorner(r, r)    = Eigen::MatrixXd::Identity(r, r);
       A.bottomLeftCorner(r, r)  = -lu.solve(K);
       A.bottomRightCorner(r, r) = -lu.solve(C);
@@ -443,12 +455,36 @@ namespace squeal
       std::vector<double> wr(n), wi(n), vr(n * n), work(1);
       int                 lwork = -1, info = 0, one = 1;
       double              dummy;
-      dgeev_("N", "V", &n, A.data(), &n, wr.data(), wi.data(), &dummy, &one,
-             vr.data(), &n, work.data(), &lwork, &info);
+      dgeev_("N",
+             "V",
+             &n,
+             A.data(),
+             &n,
+             wr.data(),
+             wi.data(),
+             &dummy,
+             &one,
+             vr.data(),
+             &n,
+             work.data(),
+             &lwork,
+             &info);
       lwork = static_cast<int>(work[0]);
       work.resize(lwork);
-      dgeev_("N", "V", &n, A.data(), &n, wr.data(), wi.data(), &dummy, &one,
-             vr.data(), &n, work.data(), &lwork, &info);
+      dgeev_("N",
+             "V",
+             &n,
+             A.data(),
+             &n,
+             wr.data(),
+             wi.data(),
+             &dummy,
+             &one,
+             vr.data(),
+             &n,
+             work.data(),
+             &lwork,
+             &info);
       if (info != 0)
         throw std::runtime_error("reduced model: LAPACK dgeev failed, info = " +
                                  std::to_string(info));
@@ -499,13 +535,15 @@ namespace squeal
                     }
                 }
           using Vector = std::array<Complex, n_parts>;
-          const auto as_complex = [](const physics::MatrixParts::Coefficients &a) {
-            Vector z;
-            for (unsigned int k = 0; k < n_parts; ++k)
-              z[k] = a[k];
-            return z;
-          };
-          const Vector mass = as_complex(c.mass), damping = as_complex(c.damping),
+          const auto as_complex =
+            [](const physics::MatrixParts::Coefficients &a) {
+              Vector z;
+              for (unsigned int k = 0; k < n_parts; ++k)
+                z[k] = a[k];
+              return z;
+            };
+          const Vector mass      = as_complex(c.mass),
+                       damping   = as_complex(c.damping),
                        stiffness = as_complex(c.stiffness);
           for (int j = 0; j < m; ++j)
             {
@@ -522,9 +560,9 @@ namespace squeal
                 total[k] = lambda * lambda * mass[k] + lambda * damping[k] +
                            stiffness[k];
               pairs[j].residual =
-                norm(total) / (std::norm(lambda) * norm(mass) +
-                               std::abs(lambda) * norm(damping) +
-                               norm(stiffness));
+                norm(total) /
+                (std::norm(lambda) * norm(mass) +
+                 std::abs(lambda) * norm(damping) + norm(stiffness));
             }
         }
       std::sort(pairs.begin(), pairs.end(), [](const auto &a, const auto &b) {
@@ -535,8 +573,8 @@ namespace squeal
 
     void
     ReducedModel::expand(const Eigen::VectorXcd &q,
-                         physics::PETScVector &  re,
-                         physics::PETScVector &  im) const
+                         physics::PETScVector   &re,
+                         physics::PETScVector   &im) const
     {
       const Eigen::VectorXd xr = V * q.real(), xi = V * q.imag();
       re.reinit(owned, comm);

@@ -13,8 +13,8 @@ namespace squeal
   {
     std::vector<std::vector<int>>
     track_modes(const std::vector<std::vector<std::complex<double>>> &lambdas,
-                const std::vector<Eigen::MatrixXd> &                  macs,
-                int &                                                 next_id,
+                const std::vector<Eigen::MatrixXd>                   &macs,
+                int                                                  &next_id,
                 const double                                          weight)
     {
       std::vector<std::vector<int>> tracks(lambdas.size());
@@ -27,8 +27,9 @@ namespace squeal
               for (unsigned int i = 0; i < lambdas[p - 1].size(); ++i)
                 for (unsigned int j = 0; j < lambdas[p].size(); ++j)
                   {
-                    const double jump = std::abs(lambdas[p][j] - lambdas[p - 1][i]) /
-                                        std::abs(lambdas[p - 1][i]);
+                    const double jump =
+                      std::abs(lambdas[p][j] - lambdas[p - 1][i]) /
+                      std::abs(lambdas[p - 1][i]);
                     const double cost = (1 - macs[p](i, j)) + weight * jump;
                     if (cost < 1.5)
                       candidates.emplace_back(cost, i, j);
@@ -52,15 +53,15 @@ namespace squeal
     std::vector<UnstableRegion>
     find_unstable_regions(
       const double                                          second,
-      const std::vector<double> &                           first,
-      const std::vector<unsigned int> &                     point_index,
+      const std::vector<double>                            &first,
+      const std::vector<unsigned int>                      &point_index,
       const std::vector<std::vector<std::complex<double>>> &lambdas,
-      const std::vector<std::vector<int>> &                 tracks,
+      const std::vector<std::vector<int>>                  &tracks,
       const double                                          tolerance)
     {
-      std::vector<UnstableRegion> regions;
+      std::vector<UnstableRegion>   regions;
       std::map<int, UnstableRegion> open; // by track
-      const auto close = [&](const int track) {
+      const auto                    close = [&](const int track) {
         auto it = open.find(track);
         if (it != open.end())
           {
@@ -82,14 +83,21 @@ namespace squeal
               auto it = open.find(t);
               if (it == open.end())
                 it = open
-                       .emplace(t, UnstableRegion{second, first[p], first[p], f, f,
-                                                  l.real(), t, -1,
-                                                  point_index[p]})
+                       .emplace(t,
+                                UnstableRegion{second,
+                                               first[p],
+                                               first[p],
+                                               f,
+                                               f,
+                                               l.real(),
+                                               t,
+                                               -1,
+                                               point_index[p]})
                        .first;
-              auto &r = it->second;
+              auto &r     = it->second;
               r.first_max = first[p];
-              r.f_min = std::min(r.f_min, f);
-              r.f_max = std::max(r.f_max, f);
+              r.f_min     = std::min(r.f_min, f);
+              r.f_max     = std::max(r.f_max, f);
               if (l.real() > r.max_re)
                 {
                   r.max_re       = l.real();
@@ -100,7 +108,7 @@ namespace squeal
                     if (k != m && lambdas[p][k].real() < 0 &&
                         std::abs(lambdas[p][k].imag() - l.imag()) < best)
                       {
-                        best            = std::abs(lambdas[p][k].imag() - l.imag());
+                        best = std::abs(lambdas[p][k].imag() - l.imag());
                         r.partner_track = tracks[p][k];
                       }
                 }
@@ -118,9 +126,11 @@ namespace squeal
         rest.push_back(t);
       for (const int t : rest)
         close(t);
-      std::sort(regions.begin(), regions.end(),
+      std::sort(regions.begin(),
+                regions.end(),
                 [](const auto &a, const auto &b) {
-                  return std::tie(a.f_min, a.first_min) < std::tie(b.f_min, b.first_min);
+                  return std::tie(a.f_min, a.first_min) <
+                         std::tie(b.f_min, b.first_min);
                 });
       return regions;
     }

@@ -14,13 +14,13 @@
 #include <squeal/io/quadratic_hex_manifold.h>
 
 #include <algorithm>
-#include <iomanip>
-#include <limits>
 #include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -36,7 +36,8 @@ namespace squeal
     {
       /// deal.II vertex v of a hexahedron is Abaqus corner abaqus_node[v]
       /// (0-based); the map is its own inverse.
-      constexpr std::array<unsigned int, 8> abaqus_node{{0, 1, 3, 2, 4, 5, 7, 6}};
+      constexpr std::array<unsigned int, 8> abaqus_node{
+        {0, 1, 3, 2, 4, 5, 7, 6}};
       /// Abaqus face S(k+1) of a C3D8 by its corners (0-based Abaqus nodes).
       constexpr std::array<std::array<unsigned int, 4>, 6> abaqus_face{
         {{{0, 1, 2, 3}},
@@ -96,10 +97,10 @@ namespace squeal
             for (unsigned int d = 0; d < 3; ++d)
               {
                 const unsigned int low = corner & ~(1u << d);
-                edge[d] = v[low | (1u << d)] - v[low];
+                edge[d]                = v[low | (1u << d)] - v[low];
               }
-            smallest = std::min(smallest,
-                                edge[0] * cross_product_3d(edge[1], edge[2]));
+            smallest =
+              std::min(smallest, edge[0] * cross_product_3d(edge[1], edge[2]));
           }
         return longest > 0. ? smallest / std::pow(longest, 3) : 0.;
       }
@@ -159,13 +160,15 @@ namespace squeal
         return names;
       }
 
-      scene::NamedSets
-      read_gmsh(const std::string &file, const double unit, Triangulation<3> &tria)
+      io::NamedSets
+      read_gmsh(const std::string &file,
+                const double       unit,
+                Triangulation<3>  &tria)
       {
-        std::ifstream in(file);
+        std::ifstream     in(file);
         std::stringstream buffer;
         buffer << in.rdbuf();
-        const std::string text = buffer.str();
+        const std::string text  = buffer.str();
         const auto        names = physical_names(text, file);
 
         GridIn<3> grid_in;
@@ -228,7 +231,7 @@ namespace squeal
                     it != names.end() ? it->second : std::to_string(id);
                 }
           }
-        scene::NamedSets sets;
+        io::NamedSets sets;
         sets.source = "mesh file '" + file + "'";
         sets.collect_from_ids(tria, cell_names, face_names);
         for (const auto &cell : tria.active_cell_iterators())
@@ -301,15 +304,24 @@ namespace squeal
         // their own (ids 1000 + cell index) that carries the curvature.
         void
         attach_quadratic_geometry(
-          const double                                       unit,
-          const std::vector<unsigned int>                   &cell_of,
+          const double                                        unit,
+          const std::vector<unsigned int>                    &cell_of,
           const std::vector<Triangulation<3>::cell_iterator> &coarse,
-          Triangulation<3>                                  &tria) const
+          Triangulation<3>                                   &tria) const
         {
           // Abaqus edges of the 12 mid-side nodes (0-based corners)
-          static const unsigned int edge[12][2] = {
-            {0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
-            {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+          static const unsigned int edge[12][2] = {{0, 1},
+                                                   {1, 2},
+                                                   {2, 3},
+                                                   {3, 0},
+                                                   {4, 5},
+                                                   {5, 6},
+                                                   {6, 7},
+                                                   {7, 4},
+                                                   {0, 4},
+                                                   {1, 5},
+                                                   {2, 6},
+                                                   {3, 7}};
           for (unsigned int e = 0; e < elements.size(); ++e)
             {
               const InpElement &el = elements[e];
@@ -322,10 +334,10 @@ namespace squeal
                   const long id = i < 8 ? el.corners[i] : el.midside[i - 8];
                   const auto it = nodes.find(id);
                   if (it == nodes.end())
-                    fail_at(el.line, "element " + std::to_string(el.id) +
-                                       " refers to node " +
-                                       std::to_string(id) +
-                                       ", which no *NODE defines");
+                    fail_at(el.line,
+                            "element " + std::to_string(el.id) +
+                              " refers to node " + std::to_string(id) +
+                              ", which no *NODE defines");
                   x[i] = unit * it->second;
                 }
               for (unsigned int k = 0; k < 12; ++k)
@@ -342,7 +354,7 @@ namespace squeal
             }
         }
 
-        scene::NamedSets
+        io::NamedSets
         build(const double unit, Triangulation<3> &tria)
         {
           // the corner nodes used by the elements become the vertices
@@ -358,10 +370,10 @@ namespace squeal
                   const long node = el.corners[abaqus_node[d]];
                   const auto it   = nodes.find(node);
                   if (it == nodes.end())
-                    fail_at(el.line, "element " + std::to_string(el.id) +
-                                       " refers to node " +
-                                       std::to_string(node) +
-                                       ", which no *NODE defines");
+                    fail_at(el.line,
+                            "element " + std::to_string(el.id) +
+                              " refers to node " + std::to_string(node) +
+                              ", which no *NODE defines");
                   const auto [pos, fresh] =
                     vertex_of.emplace(node, vertices.size());
                   if (fresh)
@@ -369,14 +381,17 @@ namespace squeal
                   cells[e].vertices[d] = pos->second;
                   v[d]                 = unit * it->second;
                 }
-              if (const double r = corner_jacobian_ratio(v); r < degenerate_ratio)
-                throw std::runtime_error(degenerate_message(
-                  "mesh file '" + file + "', line " + std::to_string(el.line) +
-                    ": element " + std::to_string(el.id),
-                  r));
+              if (const double r = corner_jacobian_ratio(v);
+                  r < degenerate_ratio)
+                throw std::runtime_error(
+                  degenerate_message("mesh file '" + file + "', line " +
+                                       std::to_string(el.line) + ": element " +
+                                       std::to_string(el.id),
+                                     r));
             }
           if (cells.empty())
-            fail_at(line_number, "no hexahedral element (*ELEMENT) in the file");
+            fail_at(line_number,
+                    "no hexahedral element (*ELEMENT) in the file");
 
           // Cells are identified after creation by their sorted vertices:
           // deal.II may renumber the vertices within a cell.
@@ -384,7 +399,8 @@ namespace squeal
           for (unsigned int e = 0; e < cells.size(); ++e)
             {
               std::array<unsigned int, 8> key;
-              std::copy(cells[e].vertices.begin(), cells[e].vertices.end(),
+              std::copy(cells[e].vertices.begin(),
+                        cells[e].vertices.end(),
                         key.begin());
               std::sort(key.begin(), key.end());
               if (!element_of.emplace(key, e).second)
@@ -405,7 +421,7 @@ namespace squeal
                                        "its elements: " +
                                        trim(e.what()).substr(0, 400));
             }
-          std::vector<unsigned int> cell_of(elements.size());
+          std::vector<unsigned int>                    cell_of(elements.size());
           std::vector<Triangulation<3>::cell_iterator> coarse;
           for (const auto &cell : tria.cell_iterators_on_level(0))
             {
@@ -421,7 +437,7 @@ namespace squeal
             element_index[elements[e].id] = e;
           attach_quadratic_geometry(unit, cell_of, coarse, tria);
 
-          scene::NamedSets sets;
+          io::NamedSets sets;
           sets.source = "mesh file '" + file + "'";
           for (const auto &[key, set] : elsets)
             {
@@ -432,10 +448,10 @@ namespace squeal
                 {
                   const auto it = element_index.find(id);
                   if (it == element_index.end())
-                    fail_at(line_number, "element set '" + set.name +
-                                           "' refers to element " +
-                                           std::to_string(id) +
-                                           ", which no *ELEMENT defines");
+                    fail_at(line_number,
+                            "element set '" + set.name +
+                              "' refers to element " + std::to_string(id) +
+                              ", which no *ELEMENT defines");
                   cells_of_set.push_back(cell_of[it->second]);
                 }
               std::sort(cells_of_set.begin(), cells_of_set.end());
@@ -447,45 +463,46 @@ namespace squeal
                 {
                   const auto it = nodes.find(id);
                   if (it == nodes.end())
-                    fail_at(line_number, "node set '" + set.name +
-                                           "' refers to node " +
-                                           std::to_string(id) +
-                                           ", which no *NODE defines");
+                    fail_at(line_number,
+                            "node set '" + set.name + "' refers to node " +
+                              std::to_string(id) + ", which no *NODE defines");
                   points.push_back(unit * it->second);
                 }
             }
           for (const auto &[key, surface] : surfaces)
             {
-              std::set<scene::CellFace> faces;
+              std::set<io::CellFace> faces;
               for (const InpSurfaceFace &sf : surface.second)
                 {
                   std::set<long> ids;
                   if (!sf.target.empty() &&
-                      std::all_of(sf.target.begin(), sf.target.end(),
+                      std::all_of(sf.target.begin(),
+                                  sf.target.end(),
                                   [](char c) { return std::isdigit(c); }))
                     ids.insert(std::stol(sf.target));
                   else if (elsets.count(sf.target))
                     collect_elset(sf.target, ids, 0);
                   else
-                    fail_at(sf.line, "surface '" + surface.first +
-                                       "' refers to '" + sf.target +
-                                       "', neither an element nor an "
-                                       "element set");
+                    fail_at(sf.line,
+                            "surface '" + surface.first + "' refers to '" +
+                              sf.target +
+                              "', neither an element nor an "
+                              "element set");
                   for (const long id : ids)
                     {
                       const auto it = element_index.find(id);
                       if (it == element_index.end())
-                        fail_at(sf.line, "surface '" + surface.first +
-                                           "' refers to element " +
-                                           std::to_string(id) +
-                                           ", which no *ELEMENT defines");
-                      const InpElement &el = elements[it->second];
+                        fail_at(sf.line,
+                                "surface '" + surface.first +
+                                  "' refers to element " + std::to_string(id) +
+                                  ", which no *ELEMENT defines");
+                      const InpElement           &el = elements[it->second];
                       std::array<unsigned int, 4> key;
                       for (unsigned int k = 0; k < 4; ++k)
                         key[k] =
                           vertex_of.at(el.corners[abaqus_face[sf.face - 1][k]]);
                       std::sort(key.begin(), key.end());
-                      const auto cell = coarse[cell_of[it->second]];
+                      const auto cell  = coarse[cell_of[it->second]];
                       bool       found = false;
                       for (const unsigned int f : cell->face_indices())
                         {
@@ -555,8 +572,8 @@ namespace squeal
         {
           if (!pending.empty())
             fail("the previous element's node list is incomplete");
-          const auto  parts = split_commas(line.substr(1));
-          const auto  name  = upper(parts[0]);
+          const auto parts = split_commas(line.substr(1));
+          const auto name  = upper(parts[0]);
           std::map<std::string, std::string> option;
           for (unsigned int k = 1; k < parts.size(); ++k)
             {
@@ -569,7 +586,9 @@ namespace squeal
           if (name == "NODE")
             {
               mode        = Mode::node;
-              current_set = option.count("NSET") ? open_set(nsets, option["NSET"]) : nullptr;
+              current_set = option.count("NSET") ?
+                              open_set(nsets, option["NSET"]) :
+                              nullptr;
             }
           else if (name == "ELEMENT")
             {
@@ -584,7 +603,9 @@ namespace squeal
                      "elements (C3D8, C3D8R, C3D8I, C3D20 or C3D20R); remesh "
                      "this part with hexahedra");
               mode        = Mode::element;
-              current_set = option.count("ELSET") ? open_set(elsets, option["ELSET"]) : nullptr;
+              current_set = option.count("ELSET") ?
+                              open_set(elsets, option["ELSET"]) :
+                              nullptr;
             }
           else if (name == "ELSET" || name == "NSET")
             {
@@ -594,8 +615,9 @@ namespace squeal
               if (option.count("INSTANCE"))
                 fail("sets of part instances are not supported: export a "
                      "flat input file");
-              mode        = name == "ELSET" ? Mode::elset : Mode::nset;
-              current_set = open_set(name == "ELSET" ? elsets : nsets, option[key]);
+              mode = name == "ELSET" ? Mode::elset : Mode::nset;
+              current_set =
+                open_set(name == "ELSET" ? elsets : nsets, option[key]);
             }
           else if (name == "SURFACE")
             {
@@ -605,7 +627,7 @@ namespace squeal
                 fail("*SURFACE, TYPE=" + option["TYPE"] +
                      " is not supported: squeal reads element-based "
                      "surfaces (TYPE=ELEMENT, lines 'element or set, Sn')");
-              mode = Mode::surface;
+              mode    = Mode::surface;
               auto &s = surfaces[upper(option["NAME"])];
               if (s.first.empty())
                 s.first = option["NAME"];
@@ -671,7 +693,8 @@ namespace squeal
                   InpElement el;
                   el.id   = pending[0];
                   el.line = line_number;
-                  std::copy(pending.begin() + 1, pending.begin() + 9,
+                  std::copy(pending.begin() + 1,
+                            pending.begin() + 9,
                             el.corners.begin());
                   el.midside.assign(pending.begin() + 9, pending.end());
                   if (!element_ids.insert(el.id).second)
@@ -736,27 +759,28 @@ namespace squeal
         }
 
         void
-        collect_elset(const std::string &key, std::set<long> &ids,
+        collect_elset(const std::string &key,
+                      std::set<long>    &ids,
                       const unsigned int depth) const
         {
           const auto it = elsets.find(key);
           if (it == elsets.end())
             fail_at(line_number, "element set '" + key + "' is not defined");
           if (depth > 32)
-            fail_at(line_number, "element set '" + it->second.name +
-                                   "' includes itself");
+            fail_at(line_number,
+                    "element set '" + it->second.name + "' includes itself");
           ids.insert(it->second.ids.begin(), it->second.ids.end());
           for (const auto &other : it->second.includes)
             collect_elset(other, ids, depth + 1);
         }
 
-        const std::string file;
-        unsigned int      line_number = 0;
-        Mode              mode        = Mode::none;
-        bool              generate    = false;
-        unsigned int      nodes_per_element = 8;
-        std::vector<long> pending;
-        InpSet           *current_set     = nullptr;
+        const std::string            file;
+        unsigned int                 line_number       = 0;
+        Mode                         mode              = Mode::none;
+        bool                         generate          = false;
+        unsigned int                 nodes_per_element = 8;
+        std::vector<long>            pending;
+        InpSet                      *current_set     = nullptr;
         std::vector<InpSurfaceFace> *current_surface = nullptr;
 
         std::map<long, Point<3>>      nodes;
@@ -769,7 +793,7 @@ namespace squeal
       };
     } // namespace
 
-    scene::NamedSets
+    io::NamedSets
     read_mesh_file(const std::string &filename,
                    const double       length_unit,
                    Triangulation<3>  &tria)
@@ -780,8 +804,7 @@ namespace squeal
                                  "per file unit], got " +
                                  std::to_string(length_unit));
       if (!std::filesystem::is_regular_file(filename))
-        throw std::runtime_error("mesh file '" + filename +
-                                 "': no such file");
+        throw std::runtime_error("mesh file '" + filename + "': no such file");
       const std::string ext = std::filesystem::path(filename).extension();
       if (upper(ext) == ".MSH")
         return read_gmsh(filename, length_unit, tria);
@@ -812,7 +835,7 @@ namespace squeal
 
     void
     write_abaqus(const Triangulation<3> &tria,
-                 const scene::NamedSets &sets,
+                 const io::NamedSets    &sets,
                  const std::string      &filename,
                  const double            length_unit)
     {
@@ -847,7 +870,8 @@ namespace squeal
           {
             out << "*ELSET, ELSET=" << abaqus_name(name) << "\n";
             for (unsigned int k = 0; k < cells.size(); ++k)
-              out << cells[k] + 1 << ((k % 16 == 15 || k + 1 == cells.size()) ? "\n" : ", ");
+              out << cells[k] + 1
+                  << ((k % 16 == 15 || k + 1 == cells.size()) ? "\n" : ", ");
           }
         for (const auto &[name, faces] : sets.face_sets)
           {
@@ -864,8 +888,7 @@ namespace squeal
                 unsigned int best = 0;
                 double       d    = std::numeric_limits<double>::max();
                 for (unsigned int i = 0; i < tria.n_vertices(); ++i)
-                  if (used[i] &&
-                      tria.get_vertices()[i].distance(points[k]) < d)
+                  if (used[i] && tria.get_vertices()[i].distance(points[k]) < d)
                     {
                       d    = tria.get_vertices()[i].distance(points[k]);
                       best = i;

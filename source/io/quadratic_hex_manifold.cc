@@ -18,11 +18,13 @@ namespace squeal
       Point<3>
       node(const unsigned int i)
       {
-        static const double r[20][3] = {
-          {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1},
-          {1, -1, 1},   {1, 1, 1},   {-1, 1, 1}, {0, -1, -1}, {1, 0, -1},
-          {0, 1, -1},   {-1, 0, -1}, {0, -1, 1}, {1, 0, 1},   {0, 1, 1},
-          {-1, 0, 1},   {-1, -1, 0}, {1, -1, 0}, {1, 1, 0},   {-1, 1, 0}};
+        static const double r[20][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1},
+                                        {-1, 1, -1},  {-1, -1, 1}, {1, -1, 1},
+                                        {1, 1, 1},    {-1, 1, 1},  {0, -1, -1},
+                                        {1, 0, -1},   {0, 1, -1},  {-1, 0, -1},
+                                        {0, -1, 1},   {1, 0, 1},   {0, 1, 1},
+                                        {-1, 0, 1},   {-1, -1, 0}, {1, -1, 0},
+                                        {1, 1, 0},    {-1, 1, 0}};
         return Point<3>(r[i][0], r[i][1], r[i][2]);
       }
 
@@ -46,7 +48,8 @@ namespace squeal
         Tensor<1, 3>   g;
         if (i < 8)
           {
-            const double f[3] = {1 + n[0] * s[0], 1 + n[1] * s[1],
+            const double f[3] = {1 + n[0] * s[0],
+                                 1 + n[1] * s[1],
                                  1 + n[2] * s[2]};
             const double sum  = n[0] * s[0] + n[1] * s[1] + n[2] * s[2] - 2;
             for (unsigned int d = 0; d < 3; ++d)
@@ -115,9 +118,10 @@ namespace squeal
             return s;
           s += invert(Tensor<2, 3>(push_forward_gradient(s))) * r;
         }
-      AssertThrow(false, ExcMessage("a quadratic element's geometry could "
-                                    "not be inverted at a point (a strongly "
-                                    "distorted C3D20)"));
+      AssertThrow(false,
+                  ExcMessage("a quadratic element's geometry could "
+                             "not be inverted at a point (a strongly "
+                             "distorted C3D20)"));
       return s;
     }
   } // namespace io

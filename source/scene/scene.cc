@@ -3,9 +3,10 @@
 
 #include <deal.II/grid/tria.h>
 
-#include <squeal/geometry/tribobrake_mesh.h>
+#include <squeal/scene/material_law.h>
 #include <squeal/scene/mesh_file_scene.h>
 #include <squeal/scene/scene.h>
+#include <squeal/scene/tribobrake_mesh.h>
 
 #include <cmath>
 #include <stdexcept>
@@ -56,14 +57,13 @@ namespace squeal
       for (const Body &b : bodies)
         names += (names.empty() ? "" : ", ") + b.name + " (" +
                  std::to_string(b.id) + ")";
-      throw std::runtime_error("scene " + description() +
-                               ": no body has material id " +
-                               std::to_string(id) + "; its bodies are " +
-                               names);
+      throw std::runtime_error(
+        "scene " + description() + ": no body has material id " +
+        std::to_string(id) + "; its bodies are " + names);
     }
 
     double
-    Scene::density(const types::material_id id,
+    Scene::density(const types::material_id       id,
                    const parameters::ScalarPoint &p) const
     {
       const Body &b = body(id);
@@ -71,11 +71,45 @@ namespace squeal
     }
 
     double
-    Scene::youngs_modulus(const types::material_id id,
+    Scene::youngs_modulus(const types::material_id       id,
                           const parameters::ScalarPoint &p) const
     {
       const Body &b = body(id);
       return b.modulus_swept ? p.E_pad : b.material.youngs_modulus;
+    }
+
+    SymmetricTensor<4, 3>
+    Scene::stiffness_tensor(const types::material_id       id,
+                            const Point<3>                &x,
+                            const parameters::ScalarPoint &p) const
+    {
+      const Body &b = body(id);
+      if (!b.law.anisotropic)
+        throw std::runtime_error("body '" + b.name + "' is isotropic");
+      return (youngs_modulus(id, p) / b.material.youngs_modulus) *
+             rotate_stiffness(b.law.C, b.law.rotation(x));
+    }
+
+    Tensor<2, 3>
+    ElasticLaw::rotation(const Point<3> &x) const
+    {
+      if (frame == Frame::cartesian)
+        return axes;
+      const Tensor<1, 3> d = x - origin;
+      Tensor<1, 3>       r = d - (d * axis) * axis;
+      if (!(r.norm() > 0.))
+        throw std::runtime_error(
+          "a cylindrical material frame has no radial direction on its axis");
+      r /= r.norm();
+      const Tensor<1, 3> t = cross_product_3d(axis, r);
+      Tensor<2, 3>       R;
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          R[i][0] = r[i];
+          R[i][1] = t[i];
+          R[i][2] = axis[i];
+        }
+      return R;
     }
 
     const Body *
@@ -104,11 +138,14 @@ namespace squeal
           , mesh(prm.mesh)
           , with_pad(with_pad)
         {
-          namespace material = geometry::material;
-          namespace boundary = geometry::boundary;
-          const auto &g = prm.geometry;
+          namespace material = tribobrake::material;
+          namespace boundary = tribobrake::boundary;
+          const auto &g      = prm.geometry;
 
-          Body disc{"disc", material::disc, prm.materials.disc};
+          Body disc;
+          disc.name         = "disc";
+          disc.id           = material::disc;
+          disc.material     = prm.materials.disc;
           disc.disc         = true;
           disc.naming_face  = boundary::disc_contact;
           disc.centre       = Point<3>();
@@ -117,14 +154,21 @@ namespace squeal
           disc.inner_radius = g.disc_inner_radius;
           disc.outer_radius = g.disc_outer_radius;
           bodies.push_back(disc);
-          holds.push_back({"disc hub", boundary::clamped, {{true, true, true}}});
+          holds.push_back(
+            {"disc hub", boundary::clamped, {{true, true, true}}});
           if (!with_pad)
             return;
 
-          Body pad{"pad", material::pad, prm.materials.pad};
+          Body pad;
+          pad.name          = "pad";
+          pad.id            = material::pad;
+          pad.material      = prm.materials.pad;
           pad.modulus_swept = true;
           bodies.push_back(pad);
-          Body support{"support", material::support, prm.materials.support};
+          Body support;
+          support.name          = "support";
+          support.id            = material::support;
+          support.material      = prm.materials.support;
           support.density_swept = true;
           bodies.push_back(support);
 
@@ -146,8 +190,9 @@ namespace squeal
           // the loading arm holds the support top's centre along the radius
           const Point<3> top(g.pad_radius, 0., g.pad_size + g.support_length);
           point_holds.push_back({"loading arm", top, 0});
-          loads.push_back(
-            {"support top", boundary::support_top, Tensor<1, 3>({0., 0., -1.})});
+          loads.push_back({"support top",
+                           boundary::support_top,
+                           Tensor<1, 3>({0., 0., -1.})});
           probes.push_back({"pad centre", pair.centre});
 
           // Spring stations: on the two support faces y = +-pad_size/2,
@@ -184,7 +229,7 @@ namespace squeal
         void
         make_mesh(Triangulation<3> &tria) const override
         {
-          geometry::make_tribobrake_mesh(geometry, mesh, with_pad, tria);
+          tribobrake::make_tribobrake_mesh(geometry, mesh, with_pad, tria);
         }
 
         std::string
@@ -193,10 +238,10 @@ namespace squeal
           return with_pad ? "tribobrake" : "disc";
         }
 
-        NamedSets
+        io::NamedSets
         named_sets(const Triangulation<3> &tria) const override
         {
-          NamedSets sets = geometry::tribobrake_sets(tria);
+          io::NamedSets sets = tribobrake::tribobrake_sets(tria);
           // the spring stations as a node set when they are mesh vertices
           // (they are for the default mesh counts)
           for (const SpringSet &s : springs)
@@ -226,8 +271,9 @@ namespace squeal
     make_scene(const parameters::AllParameters &prm)
     {
       if (prm.scene.type == "tribobrake" || prm.scene.type == "disc")
-        return std::make_unique<TriboBrakeScene>(prm, prm.scene.type ==
-                                                         "tribobrake");
+        return std::make_unique<TriboBrakeScene>(prm,
+                                                 prm.scene.type ==
+                                                   "tribobrake");
       if (prm.scene.type == "mesh file")
         return std::make_unique<MeshFileScene>(prm);
       throw std::runtime_error("Scene/Type = '" + prm.scene.type +
@@ -246,8 +292,8 @@ namespace squeal
         throw std::runtime_error(what + "a contact pair; scene " +
                                  scene.description() + " has none");
       if (scene.loads.empty())
-        throw std::runtime_error(what + "a load; scene " +
-                                 scene.description() + " has none");
+        throw std::runtime_error(what + "a load; scene " + scene.description() +
+                                 " has none");
       if (seeded && scene.disc() == nullptr)
         throw std::runtime_error(
           "Transient/Initial perturbation > 0 seeds a disc mode; scene " +

@@ -31,15 +31,17 @@ namespace squeal
           std::to_string(degree) + ")");
       typename MatrixFree<3, double>::AdditionalData additional;
       additional.mapping_update_flags = update_gradients | update_JxW_values;
-      data.reinit(mapping, dof_handler, constraints, QGauss<1>(degree + 1),
-                  additional);
+      data.reinit(
+        mapping, dof_handler, constraints, QGauss<1>(degree + 1), additional);
       data.initialize_dof_vector(in);
       data.initialize_dof_vector(out);
       cell_lame.resize(data.n_cell_batches());
       for (unsigned int b = 0; b < data.n_cell_batches(); ++b)
-        for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(b); ++v)
+        for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(b);
+             ++v)
           {
-            const auto [l, m] = lame(data.get_cell_iterator(b, v)->material_id());
+            const auto [l, m] =
+              lame(data.get_cell_iterator(b, v)->material_id());
             cell_lame[b].first[v]  = l;
             cell_lame[b].second[v] = m;
           }
@@ -49,14 +51,15 @@ namespace squeal
     void
     ElasticityOperator::apply(VectorType &dst, const VectorType &src) const
     {
-      using Worker = std::function<void(const MatrixFree<3, double> &,
-                                        VectorType &,
-                                        const VectorType &,
-                                        const std::pair<unsigned int, unsigned int> &)>;
+      using Worker =
+        std::function<void(const MatrixFree<3, double> &,
+                           VectorType &,
+                           const VectorType &,
+                           const std::pair<unsigned int, unsigned int> &)>;
       const Worker worker =
-        [this](const MatrixFree<3, double>                &mf,
-               VectorType                                 &out,
-               const VectorType                           &in,
+        [this](const MatrixFree<3, double>                 &mf,
+               VectorType                                  &out,
+               const VectorType                            &in,
                const std::pair<unsigned int, unsigned int> &range) {
           FEEvaluation<3, p, p + 1, 3, double> phi(mf);
           for (unsigned int b = range.first; b < range.second; ++b)
@@ -66,7 +69,7 @@ namespace squeal
               const auto &[lambda, mu] = cell_lame[b];
               for (const unsigned int q : phi.quadrature_point_indices())
                 {
-                  const auto eps = phi.get_symmetric_gradient(q);
+                  const auto eps   = phi.get_symmetric_gradient(q);
                   auto       sigma = 2. * mu * eps;
                   const auto tr    = trace(eps);
                   for (unsigned int d = 0; d < 3; ++d)

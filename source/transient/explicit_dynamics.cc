@@ -27,19 +27,22 @@ namespace squeal
     using namespace dealii;
 
     Vector<double>
-    lumped_mass(const DoFHandler<3> &dof_handler,
-                const Mapping<3>    &mapping,
-                const std::function<double(
-                  const DoFHandler<3>::active_cell_iterator &)> &density)
+    lumped_mass(
+      const DoFHandler<3> &dof_handler,
+      const Mapping<3>    &mapping,
+      const std::function<double(const DoFHandler<3>::active_cell_iterator &)>
+        &density)
     {
       const auto &fe = dof_handler.get_fe();
       // Gauss-Lobatto points coincide with the nodes of FE_Q (equidistant
       // for degree <= 2, Gauss-Lobatto beyond): the rule makes the mass
       // diagonal with positive weights.
-      const QGaussLobatto<3> quadrature(fe.degree + 1);
-      FEValues<3>            fe_values(mapping, fe, quadrature,
+      const QGaussLobatto<3>               quadrature(fe.degree + 1);
+      FEValues<3>                          fe_values(mapping,
+                            fe,
+                            quadrature,
                             update_values | update_JxW_values);
-      Vector<double>         m(dof_handler.n_dofs());
+      Vector<double>                       m(dof_handler.n_dofs());
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
       for (const auto &cell : dof_handler.active_cell_iterators())
         {
@@ -50,8 +53,8 @@ namespace squeal
             {
               double mi = 0.;
               for (unsigned int q = 0; q < quadrature.size(); ++q)
-                mi += fe_values.shape_value(i, q) * fe_values.shape_value(i, q) *
-                      fe_values.JxW(q);
+                mi += fe_values.shape_value(i, q) *
+                      fe_values.shape_value(i, q) * fe_values.JxW(q);
               m[dofs[i]] += rho * mi;
             }
         }
@@ -63,8 +66,8 @@ namespace squeal
       // M^-1/2 K M^-1/2 on the free DoFs (zero rows and columns elsewhere).
       struct ScaledStiffness
       {
-        const StiffnessProduct &K;
-        DistributedVector       scale; // 1/sqrt(m), 0 on fixed DoFs
+        const StiffnessProduct   &K;
+        DistributedVector         scale; // 1/sqrt(m), 0 on fixed DoFs
         mutable DistributedVector tmp;
         void
         vmult(DistributedVector &dst, const DistributedVector &src) const
@@ -88,17 +91,19 @@ namespace squeal
       }
 
       StableTimeStep
-      lanczos(const ScaledStiffness &A, const DistributedVector &b,
-              const double beta, const double beta2,
-              const unsigned int lanczos_steps)
+      lanczos(const ScaledStiffness   &A,
+              const DistributedVector &b,
+              const double             beta,
+              const double             beta2,
+              const unsigned int       lanczos_steps)
       {
         DistributedVector x(b);
         x = 0.;
         // The Ritz values of CG's Lanczos process approach the top of the
         // spectrum from below; a few dozen steps resolve it to well under
         // the safety factor a run applies (see benchmarks/transient).
-        double                 lambda_max = 0.;
-        IterationNumberControl control(lanczos_steps, 0.);
+        double                      lambda_max = 0.;
+        IterationNumberControl      control(lanczos_steps, 0.);
         SolverCG<DistributedVector> cg(control);
         cg.connect_eigenvalues_slot(
           [&](const std::vector<double> &ev) {
@@ -111,8 +116,8 @@ namespace squeal
         s.lanczos_steps = control.last_step();
         s.omega_max     = std::sqrt(lambda_max);
         const double z  = beta * s.omega_max / 2.;
-        s.critical = std::sqrt(2. / beta2) / s.omega_max *
-                     (std::sqrt(1. + z * z) - z);
+        s.critical =
+          std::sqrt(2. / beta2) / s.omega_max * (std::sqrt(1. + z * z) - z);
         return s;
       }
 
@@ -122,11 +127,12 @@ namespace squeal
       {
         auto in  = std::make_shared<Vector<double>>(K.m());
         auto out = std::make_shared<Vector<double>>(K.m());
-        return [&K, in, out](DistributedVector &dst, const DistributedVector &src) {
-          std::copy(src.begin(), src.end(), in->begin());
-          K.vmult(*out, *in);
-          std::copy(out->begin(), out->end(), dst.begin());
-        };
+        return
+          [&K, in, out](DistributedVector &dst, const DistributedVector &src) {
+            std::copy(src.begin(), src.end(), in->begin());
+            K.vmult(*out, *in);
+            std::copy(out->begin(), out->end(), dst.begin());
+          };
       }
     } // namespace
 
@@ -139,12 +145,13 @@ namespace squeal
                      const unsigned int          lanczos_steps)
     {
       const unsigned int n = K.m();
-      const auto layout = std::make_shared<Utilities::MPI::Partitioner>(n);
+      const auto layout    = std::make_shared<Utilities::MPI::Partitioner>(n);
       const StiffnessProduct product = serial_product(K);
-      ScaledStiffness A{product, DistributedVector(layout),
+      ScaledStiffness        A{product,
+                        DistributedVector(layout),
                         DistributedVector(layout)};
-      DistributedVector b(layout);
-      std::mt19937      random(12345); // deterministic start vector
+      DistributedVector      b(layout);
+      std::mt19937           random(12345); // deterministic start vector
       std::uniform_real_distribution<double> uniform(-1., 1.);
       for (unsigned int i = 0; i < n; ++i)
         {
@@ -165,12 +172,13 @@ namespace squeal
       const double                                              beta2,
       const unsigned int                                        lanczos_steps)
     {
-      ScaledStiffness   A{K, DistributedVector(partitioner),
+      ScaledStiffness   A{K,
+                        DistributedVector(partitioner),
                         DistributedVector(partitioner)};
       DistributedVector b(partitioner);
       for (unsigned int l = 0; l < partitioner->locally_owned_size(); ++l)
         {
-          const auto i = partitioner->local_to_global(l);
+          const auto i             = partitioner->local_to_global(l);
           A.scale.local_element(l) = fixed[i] ? 0. : 1. / std::sqrt(mass[i]);
           b.local_element(l)       = fixed[i] ? 0. : hash(points[i], i % 3);
         }
@@ -184,7 +192,10 @@ namespace squeal
                                        const double                dt_critical)
       : ExplicitDynamics(serial_product(K),
                          std::make_shared<Utilities::MPI::Partitioner>(K.m()),
-                         mass, fixed, settings, dt_critical)
+                         mass,
+                         fixed,
+                         settings,
+                         dt_critical)
     {}
 
     ExplicitDynamics::ExplicitDynamics(
@@ -231,7 +242,7 @@ namespace squeal
 
     void
     ExplicitDynamics::set_contact(
-      const contact::MortarOperators &m,
+      const contact::MortarOperators                      &m,
       const std::function<Tensor<1, 3>(const Point<3> &)> &master_velocity)
     {
       mortar                 = &m;
@@ -246,7 +257,8 @@ namespace squeal
         ghosts.add_indices(layout->locally_owned_range());
         ghosts.compress();
         layout = std::make_shared<Utilities::MPI::Partitioner>(
-          layout->locally_owned_range(), ghosts,
+          layout->locally_owned_range(),
+          ghosts,
           layout->get_mpi_communicator());
         reinit_vectors();
       }
@@ -259,8 +271,8 @@ namespace squeal
       // under-relaxes nodes with a fixed component and keeps the exact
       // local solution elsewhere (the fixed point is the same).
       const auto node_inverse_mass = [&](const contact::NodeDofs &d) {
-        return std::max({inverse_mass[d[0]], inverse_mass[d[1]],
-                         inverse_mass[d[2]]});
+        return std::max(
+          {inverse_mass[d[0]], inverse_mass[d[1]], inverse_mass[d[2]]});
       };
       for (unsigned int j = 0; j < n_s; ++j)
         {
@@ -288,7 +300,7 @@ namespace squeal
     {
       for (unsigned int l = 0; l < layout->locally_owned_size(); ++l)
         {
-          const auto i      = layout->local_to_global(l);
+          const auto i       = layout->local_to_global(l);
           u.local_element(l) = u0[i];
           v.local_element(l) = v0[i];
         }
@@ -326,11 +338,11 @@ namespace squeal
           else
             {
               double &ai = a.local_element(l);
-              ai = (f[i] - ai) * inverse_mass[i] -
+              ai         = (f[i] - ai) * inverse_mass[i] -
                    settings.alpha * v_pred.local_element(l);
               // u_{n+1} = u_n + dt v_n + dt^2/2 a_n, v_n = v~_n + dt beta2 a_n
-              u_next.local_element(l) = u.local_element(l) +
-                                        dt * v_pred.local_element(l) + c * ai;
+              u_next.local_element(l) =
+                u.local_element(l) + dt * v_pred.local_element(l) + c * ai;
             }
         }
       if (mortar)
@@ -363,7 +375,8 @@ namespace squeal
       // the corrections into its owned entries and its ghost copies alike.
       u.update_ghost_values();
       u_next.update_ghost_values();
-      const auto relative = [&](const unsigned int j, const DistributedVector &x) {
+      const auto relative = [&](const unsigned int       j,
+                                const DistributedVector &x) {
         Tensor<1, 3> r;
         for (const auto &[d, w] : rows[j])
           for (unsigned int k = 0; k < 3; ++k)
@@ -400,8 +413,8 @@ namespace squeal
               // slip of the slave against the master over the step
               Tensor<1, 3> s = -(R - start[j]) - dt * master_slide[j];
               s -= (s * nj) * nj;
-              const double cw = c * delassus[j];
-              const double z  = multiplier[j] * nj;
+              const double cw     = c * delassus[j];
+              const double z      = multiplier[j] * nj;
               Tensor<1, 3> lambda = multiplier[j] - z * nj;
               const double z_new  = std::max(0., z - g / cw);
               Tensor<1, 3> l_new  = lambda + s / cw;
@@ -422,11 +435,12 @@ namespace squeal
       if (it == settings.pgs_max_iterations)
         {
           std::ostringstream msg;
-          msg << "the contact multipliers (projected Gauss-Seidel) did not "
-                 "converge at t = "
-              << time() << " s: relative change " << change << " after " << it
-              << " iterations (tolerance " << settings.pgs_tolerance
-              << "); raise Transient/Contact iterations or reduce the time step";
+          msg
+            << "the contact multipliers (projected Gauss-Seidel) did not "
+               "converge at t = "
+            << time() << " s: relative change " << change << " after " << it
+            << " iterations (tolerance " << settings.pgs_tolerance
+            << "); raise Transient/Contact iterations or reduce the time step";
           throw std::runtime_error(msg.str());
         }
 
@@ -435,8 +449,8 @@ namespace squeal
       out.force        = Tensor<1, 3>();
       out.normal_force = out.contact_area = 0.;
       out.n_stick = out.n_slip = out.n_separated = 0;
-      out.pgs_iterations = it + 1;
-      out.pgs_change     = change;
+      out.pgs_iterations                         = it + 1;
+      out.pgs_change                             = change;
       for (unsigned int j = 0; j < n_s; ++j)
         {
           if (rows[j].empty())
@@ -448,15 +462,16 @@ namespace squeal
           for (const auto &[d, w] : rows[j])
             for (unsigned int k = 0; k < 3; ++k)
               a[d[k]] += w * inverse_mass[d[k]] * multiplier[j][k];
-          const Tensor<1, 3> &nj = mortar->normals[j];
-          const double        z  = multiplier[j] * nj;
+          const Tensor<1, 3> &nj     = mortar->normals[j];
+          const double        z      = multiplier[j] * nj;
           const Tensor<1, 3>  lambda = multiplier[j] - z * nj;
           const double        D      = mortar->D[j];
           out.pressure[j]            = z;
           out.traction[j]            = -lambda; // on the slave
           out.force += -D * multiplier[j];
           out.normal_force += D * z;
-          Tensor<1, 3> s = -(relative(j, u_next) - start[j]) - dt * master_slide[j];
+          Tensor<1, 3> s =
+            -(relative(j, u_next) - start[j]) - dt * master_slide[j];
           s -= (s * nj) * nj;
           out.slip_velocity[j] = s.norm() / (D * dt);
           if (!(z > 0.))
@@ -483,8 +498,10 @@ namespace squeal
     ExplicitDynamics::save(std::ostream &out) const
     {
       out.write(checkpoint_tag, sizeof(checkpoint_tag));
-      const std::uint64_t header[5] = {n_step, pending ? 1u : 0u,
-                                       multiplier.size(), layout->size(),
+      const std::uint64_t header[5] = {n_step,
+                                       pending ? 1u : 0u,
+                                       multiplier.size(),
+                                       layout->size(),
                                        layout->locally_owned_size()};
       out.write(reinterpret_cast<const char *>(header), sizeof(header));
       out.write(reinterpret_cast<const char *>(&settings.time_step),
@@ -507,7 +524,7 @@ namespace squeal
       if (!in || std::string(tag) != checkpoint_tag)
         throw std::runtime_error("not a state of squeal's explicit integrator");
       std::uint64_t header[5] = {};
-      double        dt = 0.;
+      double        dt        = 0.;
       in.read(reinterpret_cast<char *>(header), sizeof(header));
       in.read(reinterpret_cast<char *>(&dt), sizeof(double));
       if (!in || header[2] != multiplier.size() || dt != settings.time_step ||

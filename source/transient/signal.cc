@@ -36,9 +36,11 @@ namespace squeal
         std::vector<double>               in(n_fft, 0.);
         std::vector<std::complex<double>> out(n_fft / 2 + 1);
         std::copy(x.begin(), x.end(), in.begin());
-        fftw_plan plan = fftw_plan_dft_r2c_1d(
-          n_fft, in.data(), reinterpret_cast<fftw_complex *>(out.data()),
-          FFTW_ESTIMATE);
+        fftw_plan plan =
+          fftw_plan_dft_r2c_1d(n_fft,
+                               in.data(),
+                               reinterpret_cast<fftw_complex *>(out.data()),
+                               FFTW_ESTIMATE);
         fftw_execute(plan);
         fftw_destroy_plan(plan);
         std::vector<double> p(out.size());
@@ -53,7 +55,7 @@ namespace squeal
       void
       fit_envelope(GrowthFit &g)
       {
-        const unsigned int n_w = g.envelope.size();
+        const unsigned int n_w  = g.envelope.size();
         const unsigned int last = std::max(1u, n_w / 5);
         for (unsigned int k = n_w - last; k < n_w; ++k)
           g.final_amplitude += g.envelope[k] / last;
@@ -66,9 +68,9 @@ namespace squeal
         const unsigned int k_min =
           std::min_element(g.envelope.begin(), g.envelope.end()) -
           g.envelope.begin();
-        g.growing = g.envelope[k_min] > 0. ?
-                      g.final_amplitude > 10. * g.envelope[k_min] :
-                      g.final_amplitude > 0.;
+        g.growing     = g.envelope[k_min] > 0. ?
+                          g.final_amplitude > 10. * g.envelope[k_min] :
+                          g.final_amplitude > 0.;
         g.limit_cycle = g.growing && hi - lo <= 0.2 * g.final_amplitude;
         // the fit window
         unsigned int a = 0, b = n_w - 1;
@@ -82,7 +84,7 @@ namespace squeal
         if (b < a + 2)
           b = std::min(n_w - 1, a + 2);
         double       st = 0, sy = 0, stt = 0, sty = 0;
-        unsigned int m  = 0;
+        unsigned int m = 0;
         for (unsigned int k = a; k <= b; ++k)
           if (g.envelope[k] > 0.)
             {
@@ -101,8 +103,9 @@ namespace squeal
     } // namespace
 
     Spectrum
-    welch_psd(const std::vector<double> &x, const double rate,
-              unsigned int segment)
+    welch_psd(const std::vector<double> &x,
+              const double               rate,
+              unsigned int               segment)
     {
       if (x.size() < 16)
         throw std::runtime_error("a spectrum needs at least 16 samples (got " +
@@ -113,10 +116,9 @@ namespace squeal
           while (2 * segment <= x.size() * 2 / 5) // at least 4 segments
             segment *= 2;
         }
-      segment = std::min<unsigned int>(segment, x.size());
-      const std::vector<double> w  = hann(segment);
-      const double              w2 = std::inner_product(w.begin(), w.end(),
-                                                        w.begin(), 0.);
+      segment                     = std::min<unsigned int>(segment, x.size());
+      const std::vector<double> w = hann(segment);
+      const double w2 = std::inner_product(w.begin(), w.end(), w.begin(), 0.);
       const unsigned int step = segment / 2;
       Spectrum           s;
       s.psd.assign(segment / 2 + 1, 0.);
@@ -125,7 +127,7 @@ namespace squeal
         {
           std::vector<double> seg(x.begin() + start,
                                   x.begin() + start + segment);
-          const double mean =
+          const double        mean =
             std::accumulate(seg.begin(), seg.end(), 0.) / segment;
           for (unsigned int i = 0; i < segment; ++i)
             seg[i] = (seg[i] - mean) * w[i];
@@ -145,17 +147,18 @@ namespace squeal
     }
 
     double
-    dominant_frequency(const std::vector<double> &x, const double rate,
-                       const double f_min)
+    dominant_frequency(const std::vector<double> &x,
+                       const double               rate,
+                       const double               f_min)
     {
       if (x.size() < 16)
         throw std::runtime_error(
           "a dominant frequency needs at least 16 samples (got " +
           std::to_string(x.size()) + ")");
-      const unsigned int  n = x.size();
-      const double mean = std::accumulate(x.begin(), x.end(), 0.) / n;
+      const unsigned int n        = x.size();
+      const double       mean     = std::accumulate(x.begin(), x.end(), 0.) / n;
       const std::vector<double> w = hann(n);
-      std::vector<double> y(n);
+      std::vector<double>       y(n);
       for (unsigned int i = 0; i < n; ++i)
         y[i] = (x[i] - mean) * w[i];
       const unsigned int        n_fft = 8 * n;
@@ -177,8 +180,10 @@ namespace squeal
     }
 
     GrowthFit
-    fit_growth(const std::vector<double> &x, const double rate,
-               const double t0, const double period)
+    fit_growth(const std::vector<double> &x,
+               const double               rate,
+               const double               t0,
+               const double               period)
     {
       GrowthFit          g;
       const unsigned int per = std::max(1., std::round(period * rate));
@@ -199,9 +204,11 @@ namespace squeal
     }
 
     GrowthFit
-    fit_modal_growth(const std::vector<double> &x, const double rate,
-                     const double t0, const double frequency,
-                     const unsigned int periods)
+    fit_modal_growth(const std::vector<double> &x,
+                     const double               rate,
+                     const double               t0,
+                     const double               frequency,
+                     const unsigned int         periods)
     {
       if (!(frequency > 0. && frequency < rate / 2.))
         throw std::runtime_error("a modal growth rate needs a frequency "
@@ -212,10 +219,11 @@ namespace squeal
       if (x.size() < length + 2 * hop)
         throw std::runtime_error(
           "the record is too short for a modal growth rate: fewer than 3 "
-          "windows of " + std::to_string(periods) + " periods");
-      const std::vector<double> w = hann(length);
-      const double w_sum = std::accumulate(w.begin(), w.end(), 0.);
-      GrowthFit    g;
+          "windows of " +
+          std::to_string(periods) + " periods");
+      const std::vector<double> w     = hann(length);
+      const double              w_sum = std::accumulate(w.begin(), w.end(), 0.);
+      GrowthFit                 g;
       for (std::size_t start = 0; start + length <= x.size(); start += hop)
         {
           const double mean =

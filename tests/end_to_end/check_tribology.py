@@ -3,6 +3,9 @@
 
 usage: check_tribology.py SQUEAL_TRIBOLOGY PRM WORKDIR
 
+The PNG maps come from scripts/plot_tribology.py run on the output folder,
+as the README says.
+
 Runs the whole chain and checks:
 - every output file of the contract exists (CSV tables, VTU, PNG plots,
   overlays, the written contact history, the echoed parameters);
@@ -26,6 +29,8 @@ import subprocess
 import sys
 
 exe, prm, work = sys.argv[1:4]
+plot_script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
+                           "..", "scripts", "plot_tribology.py")
 prm = os.path.abspath(prm)
 os.makedirs(work, exist_ok=True)
 os.chdir(work)
@@ -55,6 +60,10 @@ shutil.rmtree(out, ignore_errors=True)
 r = run("synthetic", f"include {prm}\nsubsection Output\n  set Directory = {out}\nend\n")
 print(r.stdout.split("Verdict:")[1].split("\n")[0][:200] if "Verdict:" in r.stdout
       else fail("no verdict printed"))
+p = subprocess.run([sys.executable, plot_script, out], capture_output=True,
+                   text=True)
+if p.returncode != 0:
+    fail(f"plot_tribology.py exited {p.returncode}:\n{p.stdout}\n{p.stderr}")
 for f in ["damage.csv", "damage_sensitivity.csv", "images.csv", "maps.csv",
           "correlation.csv", "roc.csv", "verdict.txt", "pad_face_maps.vtu",
           "parameters.prm", "contact_history.h5", "damage_maps.png",

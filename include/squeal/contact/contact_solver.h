@@ -100,7 +100,7 @@ namespace squeal
       /// sliding direction of the master surface against the slave
       /// (unit vector), projected on each slave node's tangent plane
       dealii::Tensor<1, 3> sliding_direction;
-      unsigned int max_iterations = 50; ///< active-set iterations
+      unsigned int         max_iterations = 50; ///< active-set iterations
       /// `coulomb`: the displacement of the previous load step (slip
       /// increments are measured from it), n_dofs; empty: zero
       dealii::Vector<double> previous_displacement;
@@ -120,14 +120,14 @@ namespace squeal
     /** One active-set iteration, for the convergence report. */
     struct ContactIteration
     {
-      unsigned int active = 0;      ///< nodes in contact
-      unsigned int changed = 0;     ///< nodes that changed set
-      unsigned int stick = 0;       ///< nodes that stick
-      double       penetration = 0.;///< largest -g_j / D_jj [m] off A
-      double       tension = 0.;    ///< largest -z_j [Pa] on A
+      unsigned int active      = 0;  ///< nodes in contact
+      unsigned int changed     = 0;  ///< nodes that changed set
+      unsigned int stick       = 0;  ///< nodes that stick
+      double       penetration = 0.; ///< largest -g_j / D_jj [m] off A
+      double       tension     = 0.; ///< largest -z_j [Pa] on A
       /// Coulomb: largest |t_j - mu z_j n_j| over the slip nodes, relative
       /// to mu max z (n_j the direction of the trial traction)
-      double       slip_residual = 0.;
+      double slip_residual = 0.;
     };
 
     /** The converged state. */
@@ -136,7 +136,7 @@ namespace squeal
       dealii::Vector<double> displacement; ///< n_dofs, m
       /// n_dofs: the contact forces on both bodies [N] (normal and friction)
       dealii::Vector<double> contact_force;
-      dealii::Vector<double> pressure;     ///< n_s, multipliers z_j [Pa]
+      dealii::Vector<double> pressure; ///< n_s, multipliers z_j [Pa]
       /// n_s, the pressure field at the nodes (MortarOperators::nodal_pressure)
       dealii::Vector<double> nodal_pressure;
       std::vector<int>       status; ///< n_s: 0 separated, 1 closed, 2 slip
@@ -146,9 +146,9 @@ namespace squeal
       std::vector<std::array<double, 2>> tangential_traction;
       /// n_s x 2: weighted slip increment / D_jj [m] in the same frame
       std::vector<std::array<double, 2>> slip;
-      double normal_force = 0.;      ///< sum_j D_jj z_j [N]
-      double tangential_force = 0.;  ///< |sum_j D_jj t_j| [N]
-      double contact_area = 0.;      ///< sum of D_jj over A [m^2]
+      double normal_force     = 0.; ///< sum_j D_jj z_j [N]
+      double tangential_force = 0.; ///< |sum_j D_jj t_j| [N]
+      double contact_area     = 0.; ///< sum of D_jj over A [m^2]
       std::vector<ContactIteration> history;
     };
 
@@ -170,7 +170,7 @@ namespace squeal
                          const dealii::AffineConstraints<double> &constraints,
                          const MortarOperators                   &mortar,
                          const ContactSettings                   &settings,
-                         std::ostream                            *log = nullptr);
+                         std::ostream *log = nullptr);
 
     /**
      * Load stepping for path-dependent (Coulomb) contact: the load goes
@@ -185,16 +185,17 @@ namespace squeal
      * returned that would look like a converged result.
      */
     ContactSolution
-    solve_contact_load_steps(const ContactStiffness                  &K,
-                             const dealii::Vector<double>            &f_start,
-                             const dealii::Vector<double>            &f_end,
-                             const ContactSolution                   &start,
-                             const dealii::AffineConstraints<double> &constraints,
-                             const MortarOperators                   &mortar,
-                             ContactSettings                          settings,
-                             unsigned int                             n_steps,
-                             unsigned int                             max_cuts = 6,
-                             std::ostream *log = nullptr);
+    solve_contact_load_steps(
+      const ContactStiffness                  &K,
+      const dealii::Vector<double>            &f_start,
+      const dealii::Vector<double>            &f_end,
+      const ContactSolution                   &start,
+      const dealii::AffineConstraints<double> &constraints,
+      const MortarOperators                   &mortar,
+      ContactSettings                          settings,
+      unsigned int                             n_steps,
+      unsigned int                             max_cuts = 6,
+      std::ostream                            *log      = nullptr);
   } // namespace contact
 } // namespace squeal
 

@@ -51,14 +51,14 @@ namespace squeal
      * member comments; n_s slave nodes, n_m master nodes). */
     struct MortarOperators
     {
-      std::vector<dealii::Point<3>> slave_points;  ///< n_s, m
-      std::vector<NodeDofs>         slave_dofs;    ///< n_s
-      std::vector<dealii::Tensor<1, 3>> normals;   ///< n_s, unit, outward
-      std::vector<dealii::Tensor<1, 3>> tangents1; ///< n_s, unit
-      std::vector<dealii::Tensor<1, 3>> tangents2; ///< n_s, unit
-      std::vector<dealii::Point<3>> master_points; ///< n_m, m
-      std::vector<NodeDofs>         master_dofs;   ///< n_m
-      dealii::Vector<double>        D;             ///< n_s, m^2
+      std::vector<dealii::Point<3>>     slave_points;  ///< n_s, m
+      std::vector<NodeDofs>             slave_dofs;    ///< n_s
+      std::vector<dealii::Tensor<1, 3>> normals;       ///< n_s, unit, outward
+      std::vector<dealii::Tensor<1, 3>> tangents1;     ///< n_s, unit
+      std::vector<dealii::Tensor<1, 3>> tangents2;     ///< n_s, unit
+      std::vector<dealii::Point<3>>     master_points; ///< n_m, m
+      std::vector<NodeDofs>             master_dofs;   ///< n_m
+      dealii::Vector<double>            D;             ///< n_s, m^2
       /// row j: (master node l, M_jl [m^2]) for the nonzero entries
       std::vector<std::vector<std::pair<unsigned int, double>>> M;
       dealii::Vector<double> gap0; ///< n_s, weighted initial gap [m^3]
@@ -68,10 +68,10 @@ namespace squeal
       double slave_face_size = 0.; ///< shortest slave face edge [m]
       /// what the operators were built from, for a rebuild
       dealii::types::boundary_id slave_id = 0, master_id = 0;
-      double       search_distance = 0.; ///< m
-      unsigned int n_points        = 4;
-      double covered_area = 0.;    ///< slave area over the master [m^2]
-      double slave_area   = 0.;    ///< m^2
+      double                     search_distance = 0.; ///< m
+      unsigned int               n_points        = 4;
+      double covered_area = 0.; ///< slave area over the master [m^2]
+      double slave_area   = 0.; ///< m^2
       /// contact pairs merged into these operators (merge_mortar_operators);
       /// slave_id and master_id are the first pair's
       unsigned int n_pairs = 1;
@@ -100,7 +100,7 @@ namespace squeal
       /** Weighted relative displacement of slave node j against the master
        * along @p direction: dir . (D_jj u_j - sum_l M_jl u_l) [m^3]. */
       double
-      weighted_slip(unsigned int                j,
+      weighted_slip(unsigned int                  j,
                     const dealii::Vector<double> &u,
                     const dealii::Tensor<1, 3>   &direction) const;
     };
@@ -158,8 +158,8 @@ namespace squeal
                                     const dealii::Vector<double> &u,
                                     dealii::types::boundary_id    slave_id,
                                     dealii::types::boundary_id    master_id,
-                                    double                        search_distance,
-                                    unsigned int                  n_points = 4);
+                                    double       search_distance,
+                                    unsigned int n_points = 4);
 
     /**
      * Large sliding: rebuilds @p op on the configuration @p u

@@ -40,11 +40,11 @@ namespace squeal
     /** The band and accuracy of a solve. */
     struct BandOptions
     {
-      double f_min            = 900.;   ///< Hz
-      double f_max            = 20000.; ///< Hz
-      double target_frequency = 100.;   ///< Hz; shift tau = -2 pi f_t
-      double tolerance        = 1e-10;  ///< relative, SLEPc
-      unsigned int initial_nev = 40;    ///< first guess of eigenvalues wanted
+      double       f_min            = 900.;   ///< Hz
+      double       f_max            = 20000.; ///< Hz
+      double       target_frequency = 100.;   ///< Hz; shift tau = -2 pi f_t
+      double       tolerance        = 1e-10;  ///< relative, SLEPc
+      unsigned int initial_nev      = 40; ///< first guess of eigenvalues wanted
     };
 
     /**
@@ -77,11 +77,11 @@ namespace squeal
      * @throws std::runtime_error if SLEPc fails or cannot cover the band.
      */
     std::vector<UndampedMode>
-    solve_undamped(const PETScMatrix &        M,
-                   const PETScMatrix &        K,
-                   const BandOptions &        options,
-                   const double               factor,
-                   const bool                 symmetric,
+    solve_undamped(const PETScMatrix          &M,
+                   const PETScMatrix          &K,
+                   const BandOptions          &options,
+                   const double                factor,
+                   const bool                  symmetric,
                    dealii::ConditionalOStream &pcout);
 
     /**
@@ -95,7 +95,8 @@ namespace squeal
       explicit DirectSolver(const PETScMatrix &A);
       ~DirectSolver();
       DirectSolver(const DirectSolver &) = delete;
-      DirectSolver &operator=(const DirectSolver &) = delete;
+      DirectSolver &
+      operator=(const DirectSolver &) = delete;
       /** x = A^{-1} b; x must have A's row layout. */
       void
       solve(const PETScVector &b, PETScVector &x) const;

@@ -43,8 +43,9 @@ namespace squeal
     struct ReducedEigenPair
     {
       std::complex<double> lambda;
-      Eigen::VectorXcd     q;        ///< length r, reduced coordinates
-      double residual; ///< relative residual on the full model (-1: not computed)
+      Eigen::VectorXcd     q; ///< length r, reduced coordinates
+      double
+        residual; ///< relative residual on the full model (-1: not computed)
     };
 
     /** The projected model of a StructuralModel. */
@@ -64,19 +65,19 @@ namespace squeal
        * @throws std::runtime_error if an eigensolve or factorisation fails.
        */
       void
-      build(const physics::MatrixParts &    model,
+      build(const physics::MatrixParts                 &model,
             const std::vector<parameters::ScalarPoint> &samples,
-            const BandOptions &             band,
-            const double                    band_factor,
-            const unsigned int              enrichment_depth,
-            dealii::ConditionalOStream &    pcout);
+            const BandOptions                          &band,
+            const double                                band_factor,
+            const unsigned int                          enrichment_depth,
+            dealii::ConditionalOStream                 &pcout);
 
       /**
        * Projects on the span of the given vectors (length n each; linearly
        * dependent ones are dropped) instead of building a basis.
        */
       void
-      build_from_vectors(const physics::MatrixParts &    model,
+      build_from_vectors(const physics::MatrixParts     &model,
                          const std::vector<PETScVector> &vectors,
                          const bool                      with_residuals = true);
 
@@ -86,7 +87,7 @@ namespace squeal
        * are dropped) and re-projects.
        */
       void
-      enrich(const physics::MatrixParts &    model,
+      enrich(const physics::MatrixParts     &model,
              const std::vector<PETScVector> &vectors,
              const bool                      with_residuals = true);
 
@@ -103,13 +104,8 @@ namespace squeal
       /** The full-model vector V q, real and imaginary parts (length n). */
       void
       expand(const Eigen::VectorXcd &q,
-             physics::PETScVector &  re,
-             physics::PETScVector &  im) const;
-
-      /** Complex MAC |a^H b|^2 / (a^H a b^H b) of reduced coordinates (the
-       *  basis is M-orthonormal, so this is the M-weighted MAC). */
-      static double
-      mac(const Eigen::VectorXcd &a, const Eigen::VectorXcd &b);
+             physics::PETScVector   &re,
+             physics::PETScVector   &im) const;
 
       /** The largest number of real modes of one basis sample. */
       unsigned int
@@ -128,7 +124,7 @@ namespace squeal
     private:
       void
       project(const physics::MatrixParts &model,
-              Eigen::MatrixXd &           B,
+              Eigen::MatrixXd            &B,
               const bool                  with_residuals);
 
       /// The mass matrix at the reference point, for M-orthonormality.
@@ -136,18 +132,18 @@ namespace squeal
       make_reference_mass(const physics::MatrixParts &model);
 
       static constexpr unsigned int n_parts = physics::MatrixParts::n_parts;
-      physics::MatrixParts                 parts; ///< non-owning
-      PETScMatrix                          M_ref; ///< M at the reference
-      std::array<bool, n_parts>            active{}; ///< part is non-zero
+      physics::MatrixParts          parts;    ///< non-owning
+      PETScMatrix                   M_ref;    ///< M at the reference
+      std::array<bool, n_parts>     active{}; ///< part is non-zero
       bool has_residuals = false; ///< G is complete for the current basis
-      unsigned int largest_sample = 0; ///< see sample_mode_count()
-      Eigen::MatrixXd                      V; ///< n_local x r, M-orthonormal
+      unsigned int    largest_sample = 0;      ///< see sample_mode_count()
+      Eigen::MatrixXd V;                       ///< n_local x r, M-orthonormal
       std::array<Eigen::MatrixXd, n_parts> Ar; ///< V^T A_k V
       std::array<Eigen::MatrixXd, n_parts> W;  ///< A_k V, local rows
       std::array<std::array<Eigen::MatrixXd, n_parts>, n_parts>
-                                      G; ///< (A_k V)^T (A_l V)
-      dealii::IndexSet                owned;
-      MPI_Comm                        comm;
+                       G; ///< (A_k V)^T (A_l V)
+      dealii::IndexSet owned;
+      MPI_Comm         comm;
     };
 
     /**
@@ -163,10 +159,10 @@ namespace squeal
      * @throws std::runtime_error if an eigensolve fails.
      */
     std::vector<EigenPair>
-    solve_full(const physics::MatrixParts &   model,
+    solve_full(const physics::MatrixParts    &model,
                const parameters::ScalarPoint &p,
-               const BandOptions &            band,
-               dealii::ConditionalOStream &pcout);
+               const BandOptions             &band,
+               dealii::ConditionalOStream    &pcout);
   } // namespace eigen
 } // namespace squeal
 

@@ -31,8 +31,8 @@ namespace squeal
      */
     std::vector<std::vector<int>>
     track_modes(const std::vector<std::vector<std::complex<double>>> &lambdas,
-                const std::vector<Eigen::MatrixXd> &                  macs,
-                int &                                                 next_id,
+                const std::vector<Eigen::MatrixXd>                   &macs,
+                int                                                  &next_id,
                 const double weight = 10.);
 
     /**
@@ -44,8 +44,8 @@ namespace squeal
     {
       double second;               ///< value of the second parameter
       double first_min, first_max; ///< the interval of the first parameter
-      double f_min, f_max;       ///< Hz
-      double max_re;             ///< 1/s
+      double f_min, f_max;         ///< Hz
+      double max_re;               ///< 1/s
       int    track;
       int    partner_track = -1; ///< the locking-in partner, -1 if none
       unsigned int point_of_max; ///< sweep point index of max_re
@@ -63,10 +63,10 @@ namespace squeal
     std::vector<UnstableRegion>
     find_unstable_regions(
       const double                                          second,
-      const std::vector<double> &                           first,
-      const std::vector<unsigned int> &                     point_index,
+      const std::vector<double>                            &first,
+      const std::vector<unsigned int>                      &point_index,
       const std::vector<std::vector<std::complex<double>>> &lambdas,
-      const std::vector<std::vector<int>> &                 tracks,
+      const std::vector<std::vector<int>>                  &tracks,
       const double                                          tolerance);
   } // namespace eigen
 } // namespace squeal

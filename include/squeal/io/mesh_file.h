@@ -35,7 +35,7 @@
 
 #include <deal.II/grid/tria.h>
 
-#include <squeal/scene/named_sets.h>
+#include <squeal/io/named_sets.h>
 
 #include <string>
 
@@ -57,7 +57,7 @@ namespace squeal
      * inverted or degenerate (its Jacobian determinant at a corner is not
      * positive).
      */
-    scene::NamedSets
+    io::NamedSets
     read_mesh_file(const std::string        &filename,
                    double                    length_unit,
                    dealii::Triangulation<3> &tria);
@@ -76,7 +76,7 @@ namespace squeal
      */
     void
     write_abaqus(const dealii::Triangulation<3> &tria,
-                 const scene::NamedSets         &sets,
+                 const io::NamedSets            &sets,
                  const std::string              &filename,
                  double                          length_unit = 1.);
 

@@ -31,8 +31,8 @@ namespace squeal
      */
     struct MeshFileScene
     {
-      std::string file;               ///< `.msh` or `.inp`, absolute after read()
-      double      length_unit = 1.;   ///< m per mesh unit
+      std::string file;             ///< `.msh` or `.inp`, absolute after read()
+      double      length_unit = 1.; ///< m per mesh unit
       std::string bodies;
       std::string contact_pairs;
       std::string holds;
@@ -40,8 +40,10 @@ namespace squeal
       std::string loads;
       std::string springs;
       std::string probes;
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /**
@@ -59,62 +61,69 @@ namespace squeal
       /// `braking`: the transient braking simulation
       std::string   analysis = "cea";
       MeshFileScene mesh_file;
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Dimensions of the TriboBrake (thesis § 3.2.1), in m. */
     struct Geometry
     {
-      double disc_inner_radius = 0.05;   ///< m, clamped radius
-      double disc_outer_radius = 0.12;   ///< m
-      double disc_thickness    = 0.01;   ///< m, disc occupies -h <= z <= 0
-      double pad_size          = 0.01;   ///< m, edge of the cubic pad
-      double pad_radius        = 0.10;   ///< m, radius of the pad face centre
-      double support_length    = 0.10;   ///< m, along the disc axis z
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      double disc_inner_radius = 0.05; ///< m, clamped radius
+      double disc_outer_radius = 0.12; ///< m
+      double disc_thickness    = 0.01; ///< m, disc occupies -h <= z <= 0
+      double pad_size          = 0.01; ///< m, edge of the cubic pad
+      double pad_radius        = 0.10; ///< m, radius of the pad face centre
+      double support_length    = 0.10; ///< m, along the disc axis z
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Mesh density per body and FE degree. */
     struct Mesh
     {
-      unsigned int fe_degree             = 2;
+      unsigned int fe_degree                = 2;
       unsigned int disc_cells_circumference = 64;
-      unsigned int disc_cells_radial     = 10;
-      unsigned int disc_cells_thickness  = 2;
-      unsigned int pad_cells_side        = 4; ///< across the pad face (x and y)
-      unsigned int pad_cells_thickness   = 2;
-      unsigned int support_cells_length  = 10; ///< along z; 10 divides 11 spring stations
+      unsigned int disc_cells_radial        = 10;
+      unsigned int disc_cells_thickness     = 2;
+      unsigned int pad_cells_side      = 4; ///< across the pad face (x and y)
+      unsigned int pad_cells_thickness = 2;
+      unsigned int support_cells_length =
+        10; ///< along z; 10 divides 11 spring stations
       unsigned int disc_refinements_under_pad = 0;
       /// preloaded CEA: refinement cycles of the contact region driven by
       /// the preload's contact pressure variation (0: none)
       unsigned int contact_refinements = 0;
       /// preloaded CEA: fraction of the contact-face cells refined per cycle
-      double       contact_refinement_fraction = 0.25;
+      double contact_refinement_fraction = 0.25;
       /// CEA: adaptive refinement cycles before the sweep (0: none)
-      unsigned int adaptive_cycles    = 0;
+      unsigned int adaptive_cycles = 0;
       /// CEA: fraction of the cells refined per cycle (largest indicator)
-      double       refinement_fraction = 0.15;
+      double refinement_fraction = 0.15;
       /// CEA: `cells` (refine that fraction of the cells) or `error`
       /// (the fewest cells carrying that fraction of the squared indicator)
-      std::string  marking = "cells";
+      std::string marking = "cells";
       /// CEA: relative frequency tolerance of the tolerance-driven mode
       /// (0: off); the estimate solves the mesh at degree + 1
-      double       frequency_tolerance = 0.;
+      double frequency_tolerance = 0.;
       /// CEA: the degree + 1 solve of the estimate: `projected`
       /// (Rayleigh-Ritz on the carried degree-p modes and three
       /// shift-and-invert steps, one factorisation per octave) or `full`
       /// (the full solver, 2-3x slower)
-      std::string  estimate_solver = "projected";
+      std::string estimate_solver = "projected";
       /// CEA: check the estimate against degree + 2 on the final mesh
-      bool         check_estimate      = false;
+      bool check_estimate = false;
       /// CEA with a tolerance: after each h step, raise the degree on the
       /// same mesh instead where that is predicted to reduce the error
       /// faster per DoF (up to degree 3)
-      bool         degree_adaptivity   = false;
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      bool degree_adaptivity = false;
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Isotropic linear elastic material, SI units. */
@@ -133,9 +142,11 @@ namespace squeal
       Material support{210e9, 0.3, 7800.};
       /// `updated`: the calibrated support density; `steel`: 7800 kg/m^3.
       std::string support_density_model = "updated";
-      double      support_updated_density = 76500.; ///< kg/m^3, calibrated value
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      double support_updated_density    = 76500.; ///< kg/m^3, calibrated value
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** The 4 x 11 tangential springs holding the support (thesis § 3.2.1).
@@ -155,9 +166,11 @@ namespace squeal
       unsigned int n_per_row       = 11;
       double       stiffness       = 8.422e6; ///< N/m per spring
       /// m; 0: the node nearest to each station (point springs)
-      double       attachment_radius = 1.25e-3;
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      double attachment_radius = 1.25e-3;
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Rayleigh damping C = alpha M + beta K on the whole structure. */
@@ -165,42 +178,49 @@ namespace squeal
     {
       double alpha = 0.02; ///< 1/s
       double beta  = 1e-7; ///< s
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Linear friction coupling of the CEA (thesis eq. 3-1). */
     struct Interface
     {
-      double      normal_stiffness = 2.5895e12; ///< N/m^3 per unit area
-      double      friction_coefficient = 0.3; ///< when not swept [-]
-      std::string sliding_direction = "rotation"; ///< `rotation` or "tx, ty"
-      std::string rotation_sense    = "counterclockwise";
-      std::string quadrature        = "mortar"; ///< `mortar` or `nodal`
+      double      normal_stiffness     = 2.5895e12;  ///< N/m^3 per unit area
+      double      friction_coefficient = 0.3;        ///< when not swept [-]
+      std::string sliding_direction    = "rotation"; ///< `rotation` or "tx, ty"
+      std::string rotation_sense       = "counterclockwise";
+      std::string quadrature           = "mortar"; ///< `mortar` or `nodal`
       /// Unit sliding direction at the pad (z component 0), resolved from the
       /// above for a pad on the +x axis.
-      dealii::Tensor<1, 3> sliding_tangent() const;
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      dealii::Tensor<1, 3>
+      sliding_tangent() const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** The eigensolvers and the frequency band. */
     struct Eigensolver
     {
-      double       f_min = 900.;   ///< Hz
-      double       f_max = 20000.; ///< Hz
-      std::string  method = "reduced"; ///< `full` or `reduced`
-      double       tolerance = 1e-10;
-      double       target_frequency = 100.; ///< Hz, real shift -2 pi f
-      double       unstable_tolerance = 1e-3; ///< 1/s on Re(lambda)
+      double      f_min              = 900.;      ///< Hz
+      double      f_max              = 20000.;    ///< Hz
+      std::string method             = "reduced"; ///< `full` or `reduced`
+      double      tolerance          = 1e-10;
+      double      target_frequency   = 100.; ///< Hz, real shift -2 pi f
+      double      unstable_tolerance = 1e-3; ///< 1/s on Re(lambda)
       /// Sample values per swept structural parameter for the reduced basis.
       unsigned int reduced_samples = 3;
-      double       reduced_band_factor = 1.25; ///< see benchmarks/speed_vs_error
-      bool         reduced_enrichment = true;
+      double reduced_band_factor   = 1.25; ///< see benchmarks/speed_vs_error
+      bool   reduced_enrichment    = true;
       unsigned int reduced_enrichment_depth = 1; ///< levels (K^-1 K_t)^l Phi
-      unsigned int n_check_points = 2;
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      unsigned int n_check_points           = 2;
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /**
@@ -223,18 +243,20 @@ namespace squeal
        * The value of the parameter called @p name (one of
        * sweepable_parameters()). @throws std::runtime_error on another name.
        */
-      double get(const std::string &name) const;
+      double
+      get(const std::string &name) const;
       /** Sets the parameter called @p name. @throws as get(). */
-      void set(const std::string &name, const double value);
+      void
+      set(const std::string &name, const double value);
     };
 
     /** A parameter a sweep can vary, with its names in the output. */
     struct SweepableParameter
     {
-      const char *name;   ///< as written in the `.prm` file
-      const char *symbol; ///< CSV column stem, e.g. `E_pad`
-      const char *unit;   ///< CSV unit suffix, e.g. `Pa` ("" if none)
-      double      lowest; ///< smallest allowed value
+      const char *name;       ///< as written in the `.prm` file
+      const char *symbol;     ///< CSV column stem, e.g. `E_pad`
+      const char *unit;       ///< CSV unit suffix, e.g. `Pa` ("" if none)
+      double      lowest;     ///< smallest allowed value
       bool        low_open;   ///< lowest itself excluded
       bool        structural; ///< changes M or the structural K
     };
@@ -264,8 +286,8 @@ namespace squeal
     /** One axis of a sweep: which parameter and its values. */
     struct SweepAxis
     {
-      std::string parameter;    ///< a name of sweepable_parameters()
-      std::string values_text;  ///< `log A B N`, `linear A B N` or a list
+      std::string parameter;          ///< a name of sweepable_parameters()
+      std::string values_text;        ///< `log A B N`, `linear A B N` or a list
       bool        log_spaced = false; ///< values came from `log A B N`
       std::vector<double> values;     ///< parsed from values_text
 
@@ -273,13 +295,15 @@ namespace squeal
        * Parses values_text. @throws std::runtime_error naming @p entry and
        * the allowed forms if it is malformed or a value is out of range.
        */
-      void parse(const std::string &entry);
+      void
+      parse(const std::string &entry);
 
       /**
        * Whether the axis is best seen on a log scale: log-spaced, or all
        * values positive and spanning more than a factor of 10.
        */
-      bool log_scale() const;
+      bool
+      log_scale() const;
     };
 
     /**
@@ -291,20 +315,26 @@ namespace squeal
     struct Sweep
     {
       SweepAxis first{"pad modulus", "log 1e9 1e11 41", true, {}};
-      SweepAxis second{"friction coefficient", "0.01, 0.1, 0.2, 0.3, 0.5, 0.7",
-                       false, {}};
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      SweepAxis second{"friction coefficient",
+                       "0.01, 0.1, 0.2, 0.3, 0.5, 0.7",
+                       false,
+                       {}};
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Where results go. */
     struct Output
     {
-      std::string directory = "output/run";
-      bool        overwrite = false;
+      std::string directory   = "output/run";
+      bool        overwrite   = false;
       std::string mode_output = "unstable and first"; ///< or `none`, `all`
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /**
@@ -314,19 +344,21 @@ namespace squeal
      */
     struct Preload
     {
-      double       normal_force = 100.;          ///< N, on the support's top
-      std::string  friction = "steady sliding";  ///< or `coulomb`, `frictionless`
-      double       search_distance = 1e-3;       ///< m, contact search reach
-      unsigned int load_steps = 1;               ///< increments of the load
+      double      normal_force = 100.;         ///< N, on the support's top
+      std::string friction = "steady sliding"; ///< or `coulomb`, `frictionless`
+      double      search_distance = 1e-3;      ///< m, contact search reach
+      unsigned int load_steps     = 1;         ///< increments of the load
       /// m: `coulomb` only, how far the disc turns under the pad (along
       /// Interface/Sliding direction) during each load step; 0: at rest
-      double       disc_slip = 0.;
+      double disc_slip = 0.;
       /// rebuild the mortar segmentation on the deformed surfaces after a
       /// load step once the relative tangential displacement since the
       /// last one exceeds this fraction of the shortest pad face edge
-      double       segmentation_refresh = 0.1;
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      double segmentation_refresh = 0.1;
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /**
@@ -338,31 +370,33 @@ namespace squeal
      */
     struct Transient
     {
-      double angular_velocity = 1.0471975511965976; ///< rad/s (10 rpm)
-      double normal_force     = 100.;   ///< N, final value of the ramp
-      double ramp_duration    = 2e-3;   ///< s, smooth (half-cosine) ramp
-      double end_time         = 0.02;   ///< s
-      double time_step        = 0.;     ///< s; 0: safety factor x limit
-      double safety_factor    = 0.9;    ///< of the stable limit
-      double beta2            = 0.5;    ///< 0.5: central differences
-      double sampling_rate    = 1e6;    ///< Hz, tables and contact history
-      double history_start    = 0.;     ///< s, first sample of the history
-      double snapshot_interval = 1e-3;  ///< s, transient.pvd / contact.pvd
-      double animation_start   = -1.;   ///< s; < 0: ends at end_time
-      double animation_period  = 2.9e-4; ///< s, length of the window
-      unsigned int animation_frames = 20; ///< snapshots over one period
-      double spectrum_start   = -1.;    ///< s; < 0: the second half of the run
-      double       contact_tolerance  = 1e-10; ///< projected Gauss-Seidel
-      unsigned int contact_iterations = 2000;
+      double       angular_velocity  = 1.0471975511965976; ///< rad/s (10 rpm)
+      double       normal_force      = 100.; ///< N, final value of the ramp
+      double       ramp_duration     = 2e-3; ///< s, smooth (half-cosine) ramp
+      double       end_time          = 0.02; ///< s
+      double       time_step         = 0.;   ///< s; 0: safety factor x limit
+      double       safety_factor     = 0.9;  ///< of the stable limit
+      double       beta2             = 0.5;  ///< 0.5: central differences
+      double       sampling_rate     = 1e6;  ///< Hz, tables and contact history
+      double       history_start     = 0.;   ///< s, first sample of the history
+      double       snapshot_interval = 1e-3; ///< s, transient.pvd / contact.pvd
+      double       animation_start   = -1.;  ///< s; < 0: ends at end_time
+      double       animation_period  = 2.9e-4; ///< s, length of the window
+      unsigned int animation_frames  = 20;     ///< snapshots over one period
+      double       spectrum_start = -1.; ///< s; < 0: the second half of the run
+      double       contact_tolerance    = 1e-10; ///< projected Gauss-Seidel
+      unsigned int contact_iterations   = 2000;
       double       initial_perturbation = 0.; ///< m/s, see help
       /// `matrix-free` (deal.II MatrixFree) or `sparse` (assembled matrix)
-      std::string  stiffness_product = "matrix-free";
+      std::string stiffness_product = "matrix-free";
       /// steps between checkpoints (squeal --resume); 0: none
       unsigned int checkpoint_interval = 20000;
       /// run one braking simulation per Sweep point (stability table)
-      bool         grid = false;
-      void declare_parameters(ParameterHandler &prm) const;
-      void parse_parameters(ParameterHandler &prm);
+      bool grid = false;
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** All parameters of a run. */
@@ -382,20 +416,23 @@ namespace squeal
       Output      output;
 
       /** Declares every subsection with defaults, ranges and help. */
-      void declare_parameters(ParameterHandler &prm) const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
       /**
        * Reads every subsection and checks cross-parameter consistency.
        * @throws std::runtime_error naming the parameter when a value is
        * outside what is allowed (for example f_min >= f_max).
        */
-      void parse_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
 
       /**
        * Parses @p filename into @p prm and this object.
        * @throws std::runtime_error naming the file, the line and the entry on
        * a malformed file, an unknown entry, or a value outside its range.
        */
-      void read(ParameterHandler &prm, const std::string &filename);
+      void
+      read(ParameterHandler &prm, const std::string &filename);
 
       /** The scalar parameters as set in the file (no sweep applied). */
       ScalarPoint

@@ -3,89 +3,39 @@
 
 /**
  * @file
- * Linear elastic laws as fourth-order stiffness tensors C (sigma = C : eps,
- * Pa): isotropic, transversely isotropic and orthotropic, given in a
- * material frame and rotated into the global one. Friction materials are
- * strongly anisotropic (pressed in one direction: stiffer in the plane of
- * the pad than through its thickness), which moves the pad modes and with
- * them the mode lock-ins of a brake.
- *
- * Orthotropic compliance in the material frame (Voigt order 11, 22, 33,
- * 23, 13, 12, engineering shear strains; e.g. R. M. Jones, Mechanics of
- * Composite Materials, 2nd ed., 1999, eq. 2.49):
- *   S = [[1/E1, -nu12/E1, -nu13/E1], [., 1/E2, -nu23/E2], [., ., 1/E3]]
- *       (symmetric), S44 = 1/G23, S55 = 1/G13, S66 = 1/G12,
- * nu_ij the contraction in j under a stress along i; C = S^-1.
+ * The cell stiffness of an anisotropic linear elastic law (its tensor from
+ * scene/material_law.h): K_ij = int eps(phi_i) : C : eps(phi_j) dV.
  */
 
 #include <deal.II/base/symmetric_tensor.h>
-#include <deal.II/base/tensor.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/full_matrix.h>
+
+#include <vector>
 
 namespace squeal
 {
   namespace physics
   {
-    /** Orthotropic engineering constants in the material frame (axes
-     * 1, 2, 3). Moduli in Pa, Poisson ratios dimensionless. */
-    struct OrthotropicConstants
-    {
-      double E1, E2, E3;       ///< Pa
-      double nu12, nu13, nu23; ///< -
-      double G12, G13, G23;    ///< Pa
-    };
-
-    /**
-     * The isotropic stiffness tensor of Young's modulus @p E [Pa] and
-     * Poisson's ratio @p nu: C = lambda I x I + 2 mu I_sym.
-     * @throws std::runtime_error unless E > 0 and -1 < nu < 0.5.
-     */
-    dealii::SymmetricTensor<4, 3>
-    isotropic_stiffness(double E, double nu);
-
-    /**
-     * The orthotropic stiffness tensor of @p c in the material frame (the
-     * inverse of the compliance of the file comment).
-     * @throws std::runtime_error naming the constant if a modulus is not
-     * positive, or if the compliance is not positive definite (the Poisson
-     * ratios violate |nu_ij| < sqrt(E_i / E_j) or their joint bound).
-     */
-    dealii::SymmetricTensor<4, 3>
-    orthotropic_stiffness(const OrthotropicConstants &c);
-
-    /**
-     * A transversely isotropic law with the material axis 3 as its axis of
-     * symmetry: in-plane modulus @p E_p and Poisson ratio @p nu_p, axial
-     * modulus @p E_t, @p nu_pt the contraction along the axis under
-     * in-plane stress, @p G_t the transverse shear modulus (planes
-     * containing the axis) [Pa]. The orthotropic law with E1 = E2 = E_p,
-     * E3 = E_t, nu12 = nu_p, nu13 = nu23 = nu_pt, G12 = E_p / (2 (1 + nu_p)),
-     * G13 = G23 = G_t. @throws as orthotropic_stiffness().
-     */
-    dealii::SymmetricTensor<4, 3>
-    transversely_isotropic_stiffness(double E_p, double nu_p, double E_t,
-                                     double nu_pt, double G_t);
-
-    /**
-     * C rotated into the global frame: C'_ijkl = R_ia R_jb R_kc R_ld C_abcd,
-     * where the columns of @p R are the material axes 1, 2, 3 written in
-     * global coordinates (R orthonormal; for a cylindrical frame, evaluate
-     * at each point with the radial, tangential and axial unit vectors).
-     */
-    dealii::SymmetricTensor<4, 3>
-    rotate_stiffness(const dealii::SymmetricTensor<4, 3> &C,
-                     const dealii::Tensor<2, 3>          &R);
-
     /**
      * Adds to @p cell_k the stiffness of the law @p C (global frame, Pa)
      * on the cell @p fe_values was last reinit'ed on (FE_Q^3; n x n, n its
      * DoFs per cell; N/m): K_ij = int eps(phi_i) : C : eps(phi_j) dV.
      */
     void
-    add_cell_stiffness(const dealii::FEValues<3>          &fe_values,
+    add_cell_stiffness(const dealii::FEValues<3>           &fe_values,
                        const dealii::SymmetricTensor<4, 3> &C,
                        dealii::FullMatrix<double>          &cell_k);
+
+    /**
+     * The same with a law that varies over the cell (a cylindrical material
+     * frame): @p C holds its tensor at each quadrature point of
+     * @p fe_values (global frame, Pa), or one tensor for all.
+     */
+    void
+    add_cell_stiffness(const dealii::FEValues<3> &fe_values,
+                       const std::vector<dealii::SymmetricTensor<4, 3>> &C,
+                       dealii::FullMatrix<double> &cell_k);
   } // namespace physics
 } // namespace squeal
 

@@ -12,18 +12,14 @@
  */
 
 #include <deal.II/base/conditional_ostream.h>
-
-#include <complex>
-#include <vector>
-
 #include <deal.II/base/index_set.h>
 #include <deal.II/distributed/shared_tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/lac/full_matrix.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 #include <deal.II/lac/sparse_matrix.h>
@@ -33,9 +29,11 @@
 #include <squeal/scene/scene.h>
 
 #include <array>
+#include <complex>
 #include <functional>
 #include <memory>
 #include <utility>
+#include <vector>
 
 namespace squeal
 {
@@ -122,7 +120,7 @@ namespace squeal
       /** K(p) without the friction part (symmetric). */
       void
       symmetric_stiffness(const parameters::ScalarPoint &p,
-                          PETScMatrix &                  K) const;
+                          PETScMatrix                   &K) const;
       /** C(p). */
       void
       damping(const parameters::ScalarPoint &p, PETScMatrix &C) const;
@@ -147,12 +145,12 @@ namespace squeal
 
       /**
        * Makes the scene, then builds its mesh, the DoFs, the constraints
-       * (the scene's holds, hanging nodes) and the common sparsity pattern of all matrix parts,
-       * then assembles every part of MatrixParts at the nominal parameter
-       * values of the file (a zero one is replaced by 1 in its unit).
-       * Constrained rows get K_ii = d (the mean diagonal of K_rest over the
-       * free rows) and M_ii = d / (2 pi 1e3 f_max)^2, which puts their spurious
-       * eigenvalues a thousand times above the band (deal.II step-36).
+       * (the scene's holds, hanging nodes) and the common sparsity pattern of
+       * all matrix parts, then assembles every part of MatrixParts at the
+       * nominal parameter values of the file (a zero one is replaced by 1 in
+       * its unit). Constrained rows get K_ii = d (the mean diagonal of K_rest
+       * over the free rows) and M_ii = d / (2 pi 1e3 f_max)^2, which puts their
+       * spurious eigenvalues a thousand times above the band (deal.II step-36).
        */
       void
       setup_and_assemble(dealii::ConditionalOStream &pcout);
@@ -170,9 +168,10 @@ namespace squeal
        * per active cell.
        */
       void
-      refine(const dealii::Vector<float> &indicator, double fraction,
-             bool by_error,
-             dealii::ConditionalOStream &pcout);
+      refine(const dealii::Vector<float> &indicator,
+             double                       fraction,
+             bool                         by_error,
+             dealii::ConditionalOStream  &pcout);
 
       /**
        * Applies the refinement steps of another model's
@@ -187,16 +186,22 @@ namespace squeal
       replay_refinement(const std::vector<std::vector<bool>> &history,
                         dealii::ConditionalOStream           &pcout);
 
-      /// The refine flags of every refine() so far (deal.II's save_refine_flags:
-      /// 3 bits per active cell of the mesh before that step), for replay_refinement().
+      /// The refine flags of every refine() so far (deal.II's
+      /// save_refine_flags: 3 bits per active cell of the mesh before that
+      /// step), for replay_refinement().
       std::vector<std::vector<bool>> refinement_history;
 
       /** The assembled parts, for the eigensolvers. */
       MatrixParts
       parts() const
       {
-        return {{{&mass, &mass_support, &stiffness_rest, &stiffness_pad,
-                  &stiffness_springs, &interface_normal, &interface_friction}},
+        return {{{&mass,
+                  &mass_support,
+                  &stiffness_rest,
+                  &stiffness_pad,
+                  &stiffness_springs,
+                  &interface_normal,
+                  &interface_friction}},
                 reference};
       }
 
@@ -258,10 +263,11 @@ namespace squeal
 
       /// Parameter values of the assembled parts (see MatrixParts).
       parameters::ScalarPoint reference;
-      double constrained_diagonal = 1.; ///< d above [N/m]
+      double                  constrained_diagonal = 1.; ///< d above [N/m]
 
     private:
-      void setup_dofs_and_assemble(dealii::ConditionalOStream &pcout);
+      void
+      setup_dofs_and_assemble(dealii::ConditionalOStream &pcout);
       void
       assemble_elasticity();
       /// adds one spring set of the scene to stiffness_springs
@@ -270,6 +276,28 @@ namespace squeal
       void
       add_springs(const scene::SpringSet     &springs,
                   dealii::ConditionalOStream &pcout);
+      /// the quadrature of one face the springs' bells touch
+      struct SpringFaceRule;
+      /// the faces the springs of @p s spread over with their bell-weighted
+      /// quadrature; adds each spring's integrated bell [m^2] to @p total
+      /// and the faces it touches to @p faces_per_spring (local cells)
+      std::vector<SpringFaceRule>
+      spring_face_rules(const scene::SpringSet    &s,
+                        std::vector<double>       &total,
+                        std::vector<unsigned int> &faces_per_spring) const;
+      /// the Winkler layers of @p rules into stiffness_springs, each
+      /// spring's bell normalised by its @p total
+      void
+      assemble_spread_springs(const scene::SpringSet            &s,
+                              const std::vector<SpringFaceRule> &rules,
+                              const std::vector<double>         &total);
+      /// the springs with no face in reach (total 0) at the nearest
+      /// unconstrained node, along the one acting component @p component;
+      /// returns the largest station-node distance [m] and their number
+      std::pair<double, unsigned int>
+      add_nearest_node_springs(const scene::SpringSet    &s,
+                               const std::vector<double> &total,
+                               unsigned int               component);
     };
 
     /**
@@ -303,7 +331,30 @@ namespace squeal
      * mesh).
      */
     std::vector<bool>
-    dofs_on_boundary(const StructuralModel &model, dealii::types::boundary_id id);
+    dofs_on_boundary(const StructuralModel     &model,
+                     dealii::types::boundary_id id);
+
+    /** The DoFs the scene's holds fix (see held_dofs()). */
+    struct HeldDofs
+    {
+      /// n_dofs flags: on a hold's faces, in one of its held components
+      std::vector<bool> on_holds;
+      /// per point hold of the scene: the DoF of its component nearest its
+      /// point (the lowest index among equally near ones)
+      std::vector<dealii::types::global_dof_index> point_held;
+    };
+
+    /**
+     * The DoFs fixed by the holds and point holds of @p model's scene, from
+     * all cells of the mesh (the same on every rank), given the support
+     * points and components of dof_support_points(). The one place that
+     * turns the scene's holds into DoFs for the contact systems and the
+     * braking run.
+     */
+    HeldDofs
+    held_dofs(const StructuralModel               &model,
+              const std::vector<dealii::Point<3>> &points,
+              const std::vector<unsigned int>     &component);
 
     /**
      * A complex displacement field of @p from (one value per DoF of
@@ -336,10 +387,11 @@ namespace squeal
      * @p matrix to @p value (rows and columns are otherwise zero).
      */
     void
-    set_constrained_diagonal(const dealii::AffineConstraints<double> &constraints,
-                             const dealii::IndexSet &locally_owned,
-                             const double            value,
-                             PETScMatrix &           matrix);
+    set_constrained_diagonal(
+      const dealii::AffineConstraints<double> &constraints,
+      const dealii::IndexSet                  &locally_owned,
+      const double                             value,
+      PETScMatrix                             &matrix);
   } // namespace physics
 } // namespace squeal
 

@@ -34,7 +34,7 @@
  * keys (the allowed ones are listed).
  */
 
-#include <squeal/scene/named_sets.h>
+#include <squeal/io/named_sets.h>
 #include <squeal/scene/scene.h>
 
 #include <map>
@@ -63,13 +63,13 @@ namespace squeal
       description() const override;
 
       /** The named sets of the file. */
-      NamedSets
+      io::NamedSets
       named_sets(const dealii::Triangulation<3> &tria) const override;
 
     private:
-      std::string file;
-      double      length_unit;
-      NamedSets   sets;
+      std::string   file;
+      double        length_unit;
+      io::NamedSets sets;
       /// face set name -> boundary id of the face sets the scene uses
       std::map<std::string, dealii::types::boundary_id> face_ids;
       /// body index -> its cell set name

@@ -12,16 +12,17 @@
  * radius, a pad position or an id number.
  *
  * make_scene() is the factory: Scene/Type = `tribobrake` gives the
- * TriboBrake of F. Massi's thesis (2006, § 3.2.1, geometry/tribobrake_mesh.h),
+ * TriboBrake of F. Massi's thesis (2006, § 3.2.1, scene/tribobrake_mesh.h),
  * `disc` its clamped disc alone.
  */
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/grid/tria.h>
 
+#include <squeal/io/named_sets.h>
 #include <squeal/parameters/parameters.h>
-#include <squeal/scene/named_sets.h>
 
 #include <array>
 #include <memory>
@@ -33,13 +34,53 @@ namespace squeal
 {
   namespace scene
   {
+    /**
+     * An anisotropic linear elastic law of a body: the stiffness tensor in
+     * the material frame (physics/elastic_law.h) and the frame, Cartesian
+     * (fixed axes) or cylindrical (material axes 1, 2, 3 = radial,
+     * tangential, axial about an axis: a disc).
+     */
+    struct ElasticLaw
+    {
+      enum class Frame
+      {
+        cartesian,
+        cylindrical
+      };
+      /// false: the body is isotropic (Body::material)
+      bool anisotropic = false;
+      /// the stiffness tensor in the material frame [Pa], at the body's
+      /// reference modulus Body::material.youngs_modulus (the sweep of a
+      /// modulus_swept body scales it by E(p) / that modulus)
+      dealii::SymmetricTensor<4, 3> C;
+      Frame                         frame = Frame::cartesian;
+      /// cartesian: the columns are the material axes 1, 2, 3 in global
+      /// coordinates (orthonormal)
+      dealii::Tensor<2, 3> axes;
+      /// cylindrical: a point of the axis [m] and its unit direction
+      dealii::Point<3>     origin;
+      dealii::Tensor<1, 3> axis;
+
+      /**
+       * The rotation from the material to the global frame at @p x [m]:
+       * columns = material axes 1, 2, 3 in global coordinates.
+       * @throws std::runtime_error for a cylindrical frame at a point on its
+       * axis (no radial direction there).
+       */
+      dealii::Tensor<2, 3>
+      rotation(const dealii::Point<3> &x) const;
+    };
+
     /** A body: the cells of one material id, of one material. */
     struct Body
     {
       std::string                name;   ///< as in outputs (`disc`, `pad`)
       dealii::types::material_id id = 0; ///< its cells' material id
-      /// isotropic elastic constants [Pa, -, kg/m^3]
+      /// isotropic elastic constants [Pa, -, kg/m^3]; for an anisotropic
+      /// body the density and the reference modulus of its law
       parameters::Material material;
+      /// an anisotropic law (law.anisotropic), else isotropic from material
+      ElasticLaw law;
       /// the sweep parameter `pad modulus` scales this body's Young's
       /// modulus (its stiffness is a separate matrix part)
       bool modulus_swept = false;
@@ -51,8 +92,8 @@ namespace squeal
       bool disc = false;
       /// disc only: the face whose axial motion names the modes
       dealii::types::boundary_id naming_face = 0;
-      dealii::Point<3>     centre;    ///< disc only: a point of its axis [m]
-      dealii::Tensor<1, 3> axis;      ///< disc only: unit axis
+      dealii::Point<3>           centre; ///< disc only: a point of its axis [m]
+      dealii::Tensor<1, 3>       axis;   ///< disc only: unit axis
       dealii::Tensor<1, 3> reference; ///< disc only: unit theta = 0 (the pad)
       double               inner_radius = 0.; ///< disc only [m]
       double               outer_radius = 0.; ///< disc only [m]
@@ -140,13 +181,13 @@ namespace squeal
      */
     struct SpringSet
     {
-      std::string                name;     ///< as in logs and errors
-      dealii::types::material_id body = 0; ///< material id of the body
-      std::vector<dealii::Point<3>>     stations;       ///< m
+      std::string                       name;     ///< as in logs and errors
+      dealii::types::material_id        body = 0; ///< material id of the body
+      std::vector<dealii::Point<3>>     stations; ///< m
       std::vector<dealii::Tensor<1, 3>> station_normals; ///< unit, per station
-      dealii::Tensor<1, 3>              direction;      ///< unit
-      double stiffness = 0.; ///< N/m per spring
-      double radius    = 0.; ///< m
+      dealii::Tensor<1, 3>              direction;       ///< unit
+      double                            stiffness = 0.;  ///< N/m per spring
+      double                            radius    = 0.;  ///< m
       double tolerance = 1e-9; ///< m, distance of a face from a station's plane
     };
 
@@ -178,7 +219,7 @@ namespace squeal
        * The named cell, face and node sets of the coarse mesh @p tria that
        * make_mesh() built (for export: io::write_abaqus()).
        */
-      virtual NamedSets
+      virtual io::NamedSets
       named_sets(const dealii::Triangulation<3> &tria) const = 0;
 
       std::vector<Body>        bodies;        ///< one per material id
@@ -213,6 +254,18 @@ namespace squeal
       youngs_modulus(dealii::types::material_id     id,
                      const parameters::ScalarPoint &p) const;
 
+      /**
+       * The stiffness tensor [Pa] of an anisotropic body @p id at @p x [m]
+       * and the sweep point @p p, in the global frame: its law's tensor
+       * rotated by ElasticLaw::rotation(x) and scaled by youngs_modulus(id,
+       * p) / material.youngs_modulus.
+       * @throws std::runtime_error if the body is isotropic.
+       */
+      dealii::SymmetricTensor<4, 3>
+      stiffness_tensor(dealii::types::material_id     id,
+                       const dealii::Point<3>        &x,
+                       const parameters::ScalarPoint &p) const;
+
       /** The first body declared a disc, or nullptr. */
       const Body *
       disc() const;
@@ -234,8 +287,9 @@ namespace squeal
      * @throws std::runtime_error naming the scene and what it lacks.
      */
     void
-    check_for_analysis(const Scene &scene, const std::string &analysis,
-                       bool seeded = false);
+    check_for_analysis(const Scene       &scene,
+                       const std::string &analysis,
+                       bool               seeded = false);
   } // namespace scene
 } // namespace squeal
 

@@ -26,7 +26,8 @@ namespace squeal
 {
   namespace transient
   {
-    /** K u = (elasticity + springs) u, matrix-free, for FE_Q^3 of degree 1-3. */
+    /** K u = (elasticity + springs) u, matrix-free, for FE_Q^3 of degree 1-3.
+     */
     class ElasticityOperator
     {
     public:
@@ -42,13 +43,12 @@ namespace squeal
        * read); may be empty
        * @throws std::runtime_error for a degree outside 1-3
        */
-      ElasticityOperator(
-        const dealii::DoFHandler<3>             &dof_handler,
-        const dealii::Mapping<3>                &mapping,
-        const dealii::AffineConstraints<double> &constraints,
-        const std::function<std::pair<double, double>(
-          dealii::types::material_id)>          &lame,
-        const dealii::Vector<double>            &spring_diagonal);
+      ElasticityOperator(const dealii::DoFHandler<3>             &dof_handler,
+                         const dealii::Mapping<3>                &mapping,
+                         const dealii::AffineConstraints<double> &constraints,
+                         const std::function<std::pair<double, double>(
+                           dealii::types::material_id)>          &lame,
+                         const dealii::Vector<double> &spring_diagonal);
 
       using VectorType = dealii::LinearAlgebra::distributed::Vector<double>;
 

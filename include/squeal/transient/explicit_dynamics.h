@@ -49,10 +49,9 @@
 
 #include <squeal/contact/mortar.h>
 
-#include <memory>
-
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <vector>
 
 namespace squeal
@@ -64,7 +63,8 @@ namespace squeal
      * DoFs of its cells (the whole vector on one process), with the
      * interface DoFs as ghosts.
      */
-    using DistributedVector = dealii::LinearAlgebra::distributed::Vector<double>;
+    using DistributedVector =
+      dealii::LinearAlgebra::distributed::Vector<double>;
 
     /** A stiffness product dst = K src on vectors of one partitioner. */
     using StiffnessProduct =
@@ -80,16 +80,17 @@ namespace squeal
      * @return n_dofs entries, each > 0
      */
     dealii::Vector<double>
-    lumped_mass(const dealii::DoFHandler<3> &dof_handler,
-                const dealii::Mapping<3>    &mapping,
-                const std::function<double(
-                  const dealii::DoFHandler<3>::active_cell_iterator &)> &density);
+    lumped_mass(
+      const dealii::DoFHandler<3> &dof_handler,
+      const dealii::Mapping<3>    &mapping,
+      const std::function<
+        double(const dealii::DoFHandler<3>::active_cell_iterator &)> &density);
 
     /** The stability limit of the explicit scheme. */
     struct StableTimeStep
     {
-      double omega_max   = 0.; ///< largest eigenvalue of M^-1 K, sqrt [rad/s]
-      double critical    = 0.; ///< largest stable time step [s]
+      double omega_max = 0.; ///< largest eigenvalue of M^-1 K, sqrt [rad/s]
+      double critical  = 0.; ///< largest stable time step [s]
       unsigned int lanczos_steps = 0;
     };
 
@@ -128,25 +129,27 @@ namespace squeal
      * @param mass, fixed n_dofs entries each (every rank holds all)
      */
     StableTimeStep
-    stable_time_step(const StiffnessProduct                                  &K,
-                     const std::shared_ptr<const dealii::Utilities::MPI::Partitioner> &partitioner,
-                     const dealii::Vector<double>                            &mass,
-                     const std::vector<bool>                                 &fixed,
-                     const std::vector<dealii::Point<3>>                     &points,
-                     double                                                   beta,
-                     double                                                   beta2,
-                     unsigned int lanczos_steps = 80);
+    stable_time_step(
+      const StiffnessProduct &K,
+      const std::shared_ptr<const dealii::Utilities::MPI::Partitioner>
+                                          &partitioner,
+      const dealii::Vector<double>        &mass,
+      const std::vector<bool>             &fixed,
+      const std::vector<dealii::Point<3>> &points,
+      double                               beta,
+      double                               beta2,
+      unsigned int                         lanczos_steps = 80);
 
     /** Settings of the integrator. */
     struct ExplicitSettings
     {
-      double time_step = 0.;  ///< s, must not exceed the stable limit
-      double beta2     = 0.5; ///< in [1/2, 1]
-      double alpha     = 0.;  ///< Rayleigh, mass [1/s]
-      double beta      = 0.;  ///< Rayleigh, stiffness [s]
-      double friction_coefficient = 0.; ///< Coulomb mu [-]
-      double       pgs_tolerance      = 1e-10; ///< relative change of Lambda
-      unsigned int pgs_max_iterations = 2000;
+      double       time_step = 0.;  ///< s, must not exceed the stable limit
+      double       beta2     = 0.5; ///< in [1/2, 1]
+      double       alpha     = 0.;  ///< Rayleigh, mass [1/s]
+      double       beta      = 0.;  ///< Rayleigh, stiffness [s]
+      double       friction_coefficient = 0.;    ///< Coulomb mu [-]
+      double       pgs_tolerance        = 1e-10; ///< relative change of Lambda
+      unsigned int pgs_max_iterations   = 2000;
     };
 
     /** The contact state of one step (n_s slave nodes). */
@@ -155,14 +158,14 @@ namespace squeal
       dealii::Vector<double> pressure; ///< n_s, z_j [Pa]
       /// n_s: friction traction on the slave (world frame) [Pa]
       std::vector<dealii::Tensor<1, 3>> traction;
-      std::vector<int>       status;   ///< n_s: 0 separated, 1 stick, 2 slip
+      std::vector<int>       status; ///< n_s: 0 separated, 1 stick, 2 slip
       dealii::Vector<double> slip_velocity; ///< n_s, |s_j| / (D_jj dt) [m/s]
       dealii::Tensor<1, 3>   force;         ///< on the slave body [N]
-      double       normal_force  = 0.;      ///< sum D_jj z_j [N]
-      double       contact_area  = 0.;      ///< sum D_jj over z_j > 0 [m^2]
-      unsigned int n_stick = 0, n_slip = 0, n_separated = 0;
-      unsigned int pgs_iterations = 0;
-      double       pgs_change = 0.; ///< last relative change
+      double                 normal_force = 0.; ///< sum D_jj z_j [N]
+      double                 contact_area = 0.; ///< sum D_jj over z_j > 0 [m^2]
+      unsigned int           n_stick = 0, n_slip = 0, n_separated = 0;
+      unsigned int           pgs_iterations = 0;
+      double                 pgs_change     = 0.; ///< last relative change
     };
 
     /**
@@ -195,12 +198,13 @@ namespace squeal
        * set_contact(), step(), the energies, save() and load().
        */
       ExplicitDynamics(
-        StiffnessProduct                                                  stiffness_product,
-        const std::shared_ptr<const dealii::Utilities::MPI::Partitioner> &partitioner,
-        const dealii::Vector<double>                                      &mass,
-        const std::vector<bool>                                           &fixed,
-        const ExplicitSettings                                            &settings,
-        double dt_critical);
+        StiffnessProduct stiffness_product,
+        const std::shared_ptr<const dealii::Utilities::MPI::Partitioner>
+                                     &partitioner,
+        const dealii::Vector<double> &mass,
+        const std::vector<bool>      &fixed,
+        const ExplicitSettings       &settings,
+        double                        dt_critical);
 
       /**
        * Adds frictional contact on @p mortar (kept by reference; under MPI
@@ -212,9 +216,10 @@ namespace squeal
        * disc's rotation omega e_z x x); empty: at rest
        */
       void
-      set_contact(const contact::MortarOperators &mortar,
-                  const std::function<dealii::Tensor<1, 3>(
-                    const dealii::Point<3> &)> &master_velocity = {});
+      set_contact(
+        const contact::MortarOperators &mortar,
+        const std::function<dealii::Tensor<1, 3>(const dealii::Point<3> &)>
+          &master_velocity = {});
 
       /** Initial displacement [m] and velocity [m/s] at t = 0 (n_dofs
        * entries each, every rank; each takes its own). */
@@ -224,9 +229,9 @@ namespace squeal
 
       /**
        * Completes the state at t_n = n dt under the external force @p f_n
-       * [N] (n_dofs entries on every rank): the acceleration, the velocity, the contact
-       * multipliers, and the displacement at t_{n+1}. The next call moves to
-       * t_{n+1} first.
+       * [N] (n_dofs entries on every rank): the acceleration, the velocity, the
+       * contact multipliers, and the displacement at t_{n+1}. The next call
+       * moves to t_{n+1} first.
        * @throws std::runtime_error if projected Gauss-Seidel does not reach
        * its tolerance within its iteration limit, or the state is not
        * finite (naming the time and the iteration count).
@@ -234,13 +239,33 @@ namespace squeal
       void
       step(const dealii::Vector<double> &f_n);
 
-      double time() const { return n_step * settings.time_step; }
-      unsigned int step_number() const { return n_step; }
+      double
+      time() const
+      {
+        return n_step * settings.time_step;
+      }
+      unsigned int
+      step_number() const
+      {
+        return n_step;
+      }
       /** u_n [m], v_n [m/s], a_n [m/s^2] at time(): the owned entries
        * (and the interface ghosts of u_n) are current. */
-      const DistributedVector &displacement() const { return u; }
-      const DistributedVector &velocity() const { return v; }
-      const DistributedVector &acceleration() const { return a; }
+      const DistributedVector &
+      displacement() const
+      {
+        return u;
+      }
+      const DistributedVector &
+      velocity() const
+      {
+        return v;
+      }
+      const DistributedVector &
+      acceleration() const
+      {
+        return a;
+      }
       /** The layout of the vectors (with the interface ghosts). */
       const std::shared_ptr<const dealii::Utilities::MPI::Partitioner> &
       partitioner() const
@@ -248,11 +273,17 @@ namespace squeal
         return layout;
       }
       /** The contact multipliers of time() (empty without contact). */
-      const ContactStep &contact_state() const { return contact; }
+      const ContactStep &
+      contact_state() const
+      {
+        return contact;
+      }
       /** 1/2 v^T M v [J]. */
-      double kinetic_energy() const;
+      double
+      kinetic_energy() const;
       /** 1/2 u^T K u [J]. */
-      double strain_energy() const;
+      double
+      strain_energy() const;
 
       /**
        * Writes the state after the last step() (time step number, the
@@ -274,29 +305,31 @@ namespace squeal
       load(std::istream &in);
 
     private:
-      void solve_contact();
+      void
+      solve_contact();
 
-      StiffnessProduct K;
+      StiffnessProduct                                           K;
       std::shared_ptr<const dealii::Utilities::MPI::Partitioner> layout;
       /// 1 / m per DoF [1/kg], 0 on fixed DoFs (n_dofs, every rank)
-      dealii::Vector<double>             inverse_mass;
-      std::vector<bool>                  fixed;
-      ExplicitSettings                   settings;
-      const contact::MortarOperators    *mortar = nullptr;
+      dealii::Vector<double>          inverse_mass;
+      std::vector<bool>               fixed;
+      ExplicitSettings                settings;
+      const contact::MortarOperators *mortar = nullptr;
 
-      unsigned int           n_step  = 0;
-      bool                   pending = false; ///< t_n complete, not advanced
-      DistributedVector      u, v, a, v_pred, u_next;
+      unsigned int              n_step  = 0;
+      bool                      pending = false; ///< t_n complete, not advanced
+      DistributedVector         u, v, a, v_pred, u_next;
       mutable DistributedVector work;
       /// the serial copies of the SparseMatrix constructor's product
       mutable dealii::Vector<double> serial_in, serial_out;
 
-      void reinit_vectors();
+      void
+      reinit_vectors();
 
       /// per slave node: (node DoFs, weight w_k [m^2]) of the slave node
       /// (-D_jj) and its master nodes (M_jl)
       std::vector<std::vector<std::pair<contact::NodeDofs, double>>> rows;
-      std::vector<double>               delassus; ///< sum w^2 / m per node
+      std::vector<double>               delassus;     ///< sum w^2 / m per node
       std::vector<dealii::Tensor<1, 3>> master_slide; ///< sum M_jl V(x_l)
       std::vector<dealii::Tensor<1, 3>> multiplier;   ///< z n + lambda
       ContactStep                       contact;

@@ -35,7 +35,9 @@ namespace squeal
      * @throws std::runtime_error if @p x has fewer than 16 samples
      */
     Spectrum
-    welch_psd(const std::vector<double> &x, double rate, unsigned int segment = 0);
+    welch_psd(const std::vector<double> &x,
+              double                     rate,
+              unsigned int               segment = 0);
 
     /**
      * The frequency [Hz] of the largest peak of the Hann-windowed,
@@ -45,19 +47,20 @@ namespace squeal
      * @throws std::runtime_error if @p x has fewer than 16 samples
      */
     double
-    dominant_frequency(const std::vector<double> &x, double rate,
-                       double f_min = 0.);
+    dominant_frequency(const std::vector<double> &x,
+                       double                     rate,
+                       double                     f_min = 0.);
 
     /** The envelope of an oscillation and what it says. */
     struct GrowthFit
     {
-      std::vector<double> time;      ///< s, window centres
-      std::vector<double> envelope;  ///< max |x| per window
-      double growth_rate = 0.;       ///< 1/s, fitted on the growing part
-      double fit_start = 0., fit_end = 0.; ///< s, the fitted window
-      double final_amplitude = 0.;   ///< mean envelope over the last 20 %
-      bool   growing       = false;  ///< envelope grew by more than 10x
-      bool   limit_cycle   = false;  ///< last 20 % flat within 20 %
+      std::vector<double> time;             ///< s, window centres
+      std::vector<double> envelope;         ///< max |x| per window
+      double              growth_rate = 0.; ///< 1/s, fitted on the growing part
+      double fit_start = 0., fit_end = 0.;  ///< s, the fitted window
+      double final_amplitude = 0.;    ///< mean envelope over the last 20 %
+      bool   growing         = false; ///< envelope grew by more than 10x
+      bool   limit_cycle     = false; ///< last 20 % flat within 20 %
     };
 
     /**
@@ -71,8 +74,10 @@ namespace squeal
      * @throws std::runtime_error if fewer than 3 windows fit in @p x
      */
     GrowthFit
-    fit_growth(const std::vector<double> &x, double rate, double t0,
-               double period);
+    fit_growth(const std::vector<double> &x,
+               double                     rate,
+               double                     t0,
+               double                     period);
 
     /**
      * The growth rate of one spectral component of @p x (sampled at
@@ -89,8 +94,11 @@ namespace squeal
      * @p frequency is not in (0, rate / 2)
      */
     GrowthFit
-    fit_modal_growth(const std::vector<double> &x, double rate, double t0,
-                     double frequency, unsigned int periods = 16);
+    fit_modal_growth(const std::vector<double> &x,
+                     double                     rate,
+                     double                     t0,
+                     double                     frequency,
+                     unsigned int               periods = 16);
   } // namespace transient
 } // namespace squeal
 

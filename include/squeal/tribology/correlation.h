@@ -31,12 +31,11 @@ namespace squeal
     {
       unsigned int        nx = 0, ny = 0;
       double              x0 = 0., y0 = 0., h = 1.; ///< m
-      std::vector<double> values;                  ///< nx * ny, i + nx j
+      std::vector<double> values;                   ///< nx * ny, i + nx j
 
       GridMap() = default;
       /** An all-NaN map. */
-      GridMap(unsigned int nx, unsigned int ny, double x0, double y0,
-              double h);
+      GridMap(unsigned int nx, unsigned int ny, double x0, double y0, double h);
 
       /** Value of cell (i, j), i < nx along s, j < ny along r. */
       double &
@@ -94,7 +93,7 @@ namespace squeal
     struct ToroidalTest
     {
       double       observed = 0.; ///< statistic of the aligned maps
-      double       p_value = 1.;  ///< one-sided, larger is more extreme
+      double       p_value  = 1.; ///< one-sided, larger is more extreme
       unsigned int n_shifts = 0;  ///< shifts with a finite statistic
     };
 
@@ -106,11 +105,11 @@ namespace squeal
      * @throws std::invalid_argument if the grids differ.
      */
     ToroidalTest
-    toroidal_test(const GridMap &a,
-                  const GridMap &b,
-                  const std::function<double(const std::vector<double> &,
-                                             const std::vector<double> &)>
-                    &statistic);
+    toroidal_test(
+      const GridMap                                            &a,
+      const GridMap                                            &b,
+      const std::function<double(const std::vector<double> &,
+                                 const std::vector<double> &)> &statistic);
   } // namespace tribology
 } // namespace squeal
 

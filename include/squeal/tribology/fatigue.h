@@ -98,10 +98,10 @@ namespace squeal
     /** Damage of one node's history. */
     struct FindleyDamage
     {
-      double relative = 0.;   ///< D* = sum n tau_eq^m [Pa^m]
-      double miner    = 0.;   ///< D = sum n / N (Palmgren-Miner) [-]
+      double relative   = 0.; ///< D* = sum n tau_eq^m [Pa^m]
+      double miner      = 0.; ///< D = sum n / N (Palmgren-Miner) [-]
       double max_tau_eq = 0.; ///< largest tau_eq of any cycle [Pa]
-      double n_cycles = 0.;   ///< sum of cycle counts n [-]
+      double n_cycles   = 0.; ///< sum of cycle counts n [-]
     };
 
     /**
@@ -151,12 +151,12 @@ namespace squeal
     /** Statistics of one node's pressure and status histories. */
     struct NodeStatistics
     {
-      double mean_pressure = 0.;       ///< [Pa]
-      double relative_oscillation = 0.;///< (max p - min p) / mean p [-]
-      double max_pressure = 0.;        ///< [Pa]
-      double separated_fraction = 0.;  ///< share of samples with status 0 [-]
-      double stick_fraction = 0.;      ///< share of samples with status 1 [-]
-      double slip_fraction = 0.;       ///< share of samples with status 2 [-]
+      double mean_pressure        = 0.; ///< [Pa]
+      double relative_oscillation = 0.; ///< (max p - min p) / mean p [-]
+      double max_pressure         = 0.; ///< [Pa]
+      double separated_fraction   = 0.; ///< share of samples with status 0 [-]
+      double stick_fraction       = 0.; ///< share of samples with status 1 [-]
+      double slip_fraction        = 0.; ///< share of samples with status 2 [-]
       /// rainflow cycles of p whose range exceeds 10 % of the largest range,
       /// per second [1/s]: the squeal frequency where the pressure oscillates
       double cycles_per_second = 0.;

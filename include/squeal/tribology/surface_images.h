@@ -79,13 +79,13 @@ namespace squeal
     struct CrackParameters
     {
       std::vector<double> scales{1., 1.5, 2., 3.}; ///< Gaussian sigmas [px]
-      double       beta = 0.5;          ///< Frangi's blob sensitivity [-]
-      bool         dark = true;         ///< cracks darker than the surface
-      unsigned int background_degree = 2; ///< see flatten_background()
-      double       min_length = 15.;    ///< shorter skeleton parts dropped [px]
+      double              beta = 0.5;  ///< Frangi's blob sensitivity [-]
+      bool                dark = true; ///< cracks darker than the surface
+      unsigned int        background_degree = 2; ///< see flatten_background()
+      double min_length = 15.; ///< shorter skeleton parts dropped [px]
       /// ridges weaker than this many times the median Hessian norm are
       /// noise or texture (see frangi_vesselness())
-      double       noise_floor = 3.;
+      double noise_floor = 3.;
     };
 
     /** What the crack detector found in one image. */
@@ -94,9 +94,9 @@ namespace squeal
       cv::Mat             mask;     ///< CV_8U, 255 on crack pixels
       cv::Mat             skeleton; ///< CV_8U, 255 on the kept centre lines
       cv::Mat             length_per_pixel; ///< CV_32F, see skeleton_length()
-      std::vector<double> lengths; ///< per kept crack (component) [px]
+      std::vector<double> lengths;          ///< per kept crack (component) [px]
       double              total_length = 0.; ///< [px]
-      std::vector<cv::Point2d> centroids; ///< per kept crack [px]
+      std::vector<cv::Point2d> centroids;    ///< per kept crack [px]
     };
 
     /**
@@ -115,22 +115,22 @@ namespace squeal
     /** Settings of the exfoliation (blob) detector. */
     struct ExfoliationParameters
     {
-      bool         dark = true;           ///< exfoliations darker
-      unsigned int background_degree = 2; ///< see flatten_background()
+      bool         dark              = true; ///< exfoliations darker
+      unsigned int background_degree = 2;    ///< see flatten_background()
       /// radius [px] of the disc of the morphological opening that removes
       /// cracks and noise: larger than a crack's half-width, smaller than
       /// the smallest blob's radius of curvature
       unsigned int opening_radius = 3;
-      double       min_area = 20.; ///< smaller components dropped [px^2]
+      double       min_area       = 20.; ///< smaller components dropped [px^2]
     };
 
     /** What the exfoliation detector found in one image. */
     struct ExfoliationMap
     {
-      cv::Mat             mask;  ///< CV_8U, 255 on exfoliated pixels
-      std::vector<double> areas; ///< per blob [px^2]
+      cv::Mat                  mask;      ///< CV_8U, 255 on exfoliated pixels
+      std::vector<double>      areas;     ///< per blob [px^2]
       std::vector<cv::Point2d> centroids; ///< per blob [px]
-      double              area_fraction = 0.; ///< exfoliated / image area
+      double                   area_fraction = 0.; ///< exfoliated / image area
     };
 
     /**
@@ -186,11 +186,11 @@ namespace squeal
     /** A synthetic SEM-like image with known content, for tests and demos. */
     struct SyntheticSurface
     {
-      cv::Mat image;          ///< CV_32F in [0, 1]
-      cv::Mat centre_lines;   ///< CV_8U, the cracks' 1-px centre lines
-      cv::Mat blob_mask;      ///< CV_8U, 255 inside the drawn ellipses
+      cv::Mat image;             ///< CV_32F in [0, 1]
+      cv::Mat centre_lines;      ///< CV_8U, the cracks' 1-px centre lines
+      cv::Mat blob_mask;         ///< CV_8U, 255 inside the drawn ellipses
       double  crack_length = 0.; ///< exact drawn centre-line length [px]
-      double  blob_area = 0.;    ///< exact area of the ellipses [px^2]
+      double  blob_area    = 0.; ///< exact area of the ellipses [px^2]
     };
 
     /** A crack: a polyline of width `width` [px]. */

@@ -12,10 +12,11 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <squeal/tribology/contact_history.h>
+#include <squeal/io/contact_history.h>
 #include <squeal/tribology/correlation.h>
 #include <squeal/tribology/fatigue.h>
 #include <squeal/tribology/surface_images.h>
+#include <squeal/tribology/synthetic_history.h>
 
 #include <string>
 #include <vector>
@@ -32,44 +33,50 @@ namespace squeal
       /// HDF5 file (contact_history.h), relative to the .prm file's folder;
       /// `synthetic` draws one (subsection `Synthetic history`); empty: no
       /// damage analysis (images only).
-      std::string file = "synthetic";
+      std::string file       = "synthetic";
       double      start_time = 0.; ///< s, earlier samples (the ramp) dropped
       /** Declares the subsection's entries with defaults, ranges, help. */
-      void declare_parameters(ParameterHandler &prm) const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
       /** Reads them back. @throws std::runtime_error on inconsistent values. */
-      void parse_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Subsection `Synthetic history` (see synthetic_squeal_history()). */
     struct SyntheticHistory
     {
-      unsigned int nodes_per_side = 11;
-      unsigned int samples = 10000;
-      double sampling_rate = 1e6;      ///< Hz
-      double frequency = 3400.;        ///< Hz
-      double mean_pressure = 1e6;      ///< Pa (100 N on 1e-4 m^2)
-      double friction_coefficient = 0.4;
-      double pad_size = 0.01;          ///< m
-      double pad_radius = 0.1;         ///< m
+      unsigned int nodes_per_side       = 11;
+      unsigned int samples              = 10000;
+      double       sampling_rate        = 1e6;   ///< Hz
+      double       frequency            = 3400.; ///< Hz
+      double       mean_pressure        = 1e6;   ///< Pa (100 N on 1e-4 m^2)
+      double       friction_coefficient = 0.4;
+      double       pad_size             = 0.01; ///< m
+      double       pad_radius           = 0.1;  ///< m
       double trailing_amplitude = 0.1; ///< oscillation at the trailing edge
       /** Declares the subsection's entries with defaults, ranges, help. */
-      void declare_parameters(ParameterHandler &prm) const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
       /** Reads them back. @throws std::runtime_error on inconsistent values. */
-      void parse_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Subsection `Damage`: the fatigue indices and their sensitivity. */
     struct DamageSettings
     {
-      FindleyParameters findley;
-      double crossland_alpha = 0.3;  ///< -
-      double poisson_ratio = 0.3;    ///< pad, -
+      FindleyParameters   findley;
+      double              crossland_alpha = 0.3; ///< -
+      double              poisson_ratio   = 0.3; ///< pad, -
       std::vector<double> sensitivity_k{0.1, 0.2, 0.3, 0.4, 0.5};
       std::vector<double> sensitivity_m{5., 8., 10., 12., 15.};
       /** Declares the subsection's entries with defaults, ranges, help. */
-      void declare_parameters(ParameterHandler &prm) const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
       /** Reads them back. @throws std::runtime_error on inconsistent values. */
-      void parse_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Subsection `Images`: SEM images and their detectors. */
@@ -80,30 +87,34 @@ namespace squeal
       std::vector<std::string> files{"synthetic"};
       /// folder of the sidecars, relative to the .prm file; empty: beside
       /// each image (for images in a read-only folder)
-      std::string              sidecar_folder;
-      CrackParameters          cracks;
-      ExfoliationParameters    exfoliations;
+      std::string           sidecar_folder;
+      CrackParameters       cracks;
+      ExfoliationParameters exfoliations;
       double micro_max_area = 1e-10; ///< m^2: micro-exfoliations below
       double macro_min_area = 1e-6;  ///< m^2: macro-exfoliations above
       /** Declares the subsection's entries with defaults, ranges, help. */
-      void declare_parameters(ParameterHandler &prm) const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
       /** Reads them back. @throws std::runtime_error on inconsistent values. */
-      void parse_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Subsection `Synthetic images`: SEM-like fields whose crack density
      * follows the damage map, for demonstrations. */
     struct SyntheticImages
     {
-      unsigned int fields_per_side = 2;  ///< fields of view per face side
-      unsigned int image_size = 800;     ///< px per side of one field
-      double cracks_per_cell = 4.;       ///< mean count where damage is largest
-      double blobs_per_cell = 0.3;       ///< mean count where damage is largest
-      unsigned int seed = 1;
+      unsigned int fields_per_side = 2;   ///< fields of view per face side
+      unsigned int image_size      = 800; ///< px per side of one field
+      double       cracks_per_cell = 4.; ///< mean count where damage is largest
+      double       blobs_per_cell = 0.3; ///< mean count where damage is largest
+      unsigned int seed           = 1;
       /** Declares the subsection's entries with defaults, ranges, help. */
-      void declare_parameters(ParameterHandler &prm) const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
       /** Reads them back. @throws std::runtime_error on inconsistent values. */
-      void parse_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Subsection `Correlation`. */
@@ -114,9 +125,11 @@ namespace squeal
       /// a negative value takes the median over the imaged cells
       double cracked_threshold = -1.;
       /** Declares the subsection's entries with defaults, ranges, help. */
-      void declare_parameters(ParameterHandler &prm) const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
       /** Reads them back. @throws std::runtime_error on inconsistent values. */
-      void parse_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** Subsection `Output`. */
@@ -124,11 +137,12 @@ namespace squeal
     {
       std::string directory = "output/tribology";
       bool        overwrite = false;
-      bool        plots = true; ///< PNGs through scripts/plot_tribology.py
       /** Declares the subsection's entries with defaults, ranges, help. */
-      void declare_parameters(ParameterHandler &prm) const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
       /** Reads them back. @throws std::runtime_error on inconsistent values. */
-      void parse_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
     };
 
     /** All subsections. */
@@ -144,16 +158,19 @@ namespace squeal
       std::string         base_directory = "."; ///< folder of the .prm file
 
       /** Declares every subsection. */
-      void declare_parameters(ParameterHandler &prm) const;
+      void
+      declare_parameters(ParameterHandler &prm) const;
       /** Reads every subsection. @throws std::runtime_error on
        * inconsistent values (naming the parameter). */
-      void parse_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
       /**
        * Declares, parses @p filename and checks the values.
        * @throws std::runtime_error naming the file and the line or the
        * parameter and what is allowed.
        */
-      void read(ParameterHandler &prm, const std::string &filename);
+      void
+      read(ParameterHandler &prm, const std::string &filename);
     };
 
     /**
@@ -167,7 +184,7 @@ namespace squeal
      */
     struct ImagePlacement
     {
-      cv::Matx23d pixel_to_face; ///< face [m] = A (x, y, 1)
+      cv::Matx23d pixel_to_face;   ///< face [m] = A (x, y, 1)
       double      pixel_size = 0.; ///< m/px (sqrt of |det A|)
       std::string reference_image; ///< empty: none
     };
@@ -207,7 +224,7 @@ namespace squeal
       CrackMap       cracks;       ///< see detect_cracks()
       ExfoliationMap exfoliations; ///< see detect_exfoliations()
       unsigned int   micro = 0, meso = 0, macro = 0; ///< blob counts by class
-      double micro_area = 0., meso_area = 0., macro_area = 0.; ///< m^2
+      double         micro_area = 0., meso_area = 0., macro_area = 0.; ///< m^2
     };
 
     /**
@@ -230,30 +247,37 @@ namespace squeal
       run();
 
     private:
-      void setup();
-      void compute_damage();
-      void make_synthetic_images();
-      void analyse_images();
-      void build_maps();
-      void correlate();
-      void output_results();
+      void
+      setup();
+      void
+      compute_damage();
+      void
+      make_synthetic_images();
+      void
+      analyse_images();
+      void
+      build_maps();
+      void
+      correlate();
+      void
+      output_results();
 
       const TribologyParameters &prm;
       const ParameterHandler    &handler;
       std::string                work_dir;
 
-      ContactHistory                history;
-      std::vector<FindleyDamage>    findley;
-      std::vector<CrosslandIndex>   crossland;
-      std::vector<NodeStatistics>   statistics;
-      std::vector<std::string>      image_files;
-      std::vector<ImageResult>      images;
+      io::ContactHistory          history;
+      std::vector<FindleyDamage>  findley;
+      std::vector<CrosslandIndex> crossland;
+      std::vector<NodeStatistics> statistics;
+      std::vector<std::string>    image_files;
+      std::vector<ImageResult>    images;
 
       GridMap log_damage, crack_density, crack_count, exfoliated, coverage,
         p_oscillation, separated;
-      std::vector<std::vector<std::string>> correlation_rows;
+      std::vector<std::vector<std::string>>  correlation_rows;
       std::vector<std::pair<double, double>> roc;
-      std::string verdict;
+      std::string                            verdict;
     };
   } // namespace tribology
 } // namespace squeal

@@ -1,0 +1,181 @@
+#ifndef squeal_analyses_cea_h
+#define squeal_analyses_cea_h
+
+/**
+ * @file
+ * The complex eigenvalue analysis (CEA) of a scene over a sweep of pad
+ * modulus and friction coefficient: the eigenvalues of
+ * (lambda^2 M + lambda C + K + K_f(mu)) phi = 0 (thesis eq. 1-40 ff.), modes
+ * tracked across the sweep, unstable regions (Re lambda > tolerance) and the
+ * modes that lock in. Writes, into Output/Directory: eigenvalues.csv,
+ * unstable_regions.csv, check_full.csv (reduced against full), modes.pvd with
+ * the mode shapes, parameters.prm (the resolved parameters).
+ */
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <squeal/eigen/reduced_model.h>
+#include <squeal/eigen/tracking.h>
+#include <squeal/physics/structural_model.h>
+
+#include <complex>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace squeal
+{
+  namespace analyses
+  {
+    /** One eigenvalue of one sweep point, as written to eigenvalues.csv. */
+    struct ModeRecord
+    {
+      unsigned int            point;
+      parameters::ScalarPoint values; ///< the sweep point's parameters
+      unsigned int            mode;   ///< index within the point, by frequency
+      std::complex<double>    lambda; ///< 1/s
+      double                  residual; ///< relative, on the full model
+      bool                    unstable;
+      int                     track;
+    };
+
+    /** The analysis; run() does everything. */
+    class ComplexEigenvalueAnalysis
+    {
+    public:
+      /**
+       * @param prm the parsed parameters; @param handler the handler they
+       * were parsed from (echoed into the output directory).
+       */
+      ComplexEigenvalueAnalysis(const parameters::AllParameters &prm,
+                                const dealii::ParameterHandler  &handler,
+                                MPI_Comm                         comm);
+
+      /**
+       * Builds the model, solves every sweep point, tracks the modes,
+       * classifies stability and writes the outputs.
+       * @throws std::runtime_error if the output directory exists and
+       * overwriting was not asked for, or if a solver fails.
+       */
+      void
+      run();
+
+      /** Every eigenvalue of the sweep (after run()). */
+      const std::vector<ModeRecord> &
+      records() const
+      {
+        return modes;
+      }
+      /** The unstable regions of the sweep (after run()). */
+      const std::vector<eigen::UnstableRegion> &
+      unstable_regions() const
+      {
+        return regions;
+      }
+
+    private:
+      void
+      setup_system();
+      void
+      solve_sweep();
+      void
+      check_against_full();
+      void
+      classify();
+      void
+      output_results() const;
+      void
+      write_mode(const physics::PETScVector &re,
+                 const physics::PETScVector &im,
+                 const std::string          &name) const;
+      /// Kelly's indicator on the first point's modes: mesh_error.vtu and
+      /// the share of each body, printed
+      void
+      write_error_indicator() const;
+      /// Kelly's indicator of @p pairs (modes of the point @p values, each
+      /// scaled to unit kinetic norm with that point's whole mass M(p)),
+      /// squared and summed per active cell; with @p weights (one per pair)
+      /// each mode's squared field is scaled to a sum of weight^2 over the
+      /// mesh
+      dealii::Vector<double>
+      mode_indicator(const std::vector<eigen::EigenPair> &pairs,
+                     const parameters::ScalarPoint       &values,
+                     const std::vector<double>           &weights = {}) const;
+      /// Mesh/Contact refinements: refine where the preload's contact
+      /// pressure @p preload_pressure (points [m], pressures [Pa]) varies
+      /// most; contact_refinement.csv
+      void
+      refine_at_contact(const std::vector<std::pair<dealii::Point<3>, double>>
+                          &preload_pressure);
+      /// Mesh/Degree adaptivity: whether degree + 1 on the same mesh is
+      /// predicted to reduce the largest estimate faster per DoF than the
+      /// last h step (@p dofs_before DoFs and estimate @p estimate_before
+      /// before it, @p worst now, @p rich_dofs DoFs at degree + 1); if so
+      /// the model is rebuilt at degree + 1 (raised_prm) and true returned
+      bool
+      raise_degree(dealii::types::global_dof_index dofs_before,
+                   double                          estimate_before,
+                   double                          worst,
+                   dealii::types::global_dof_index rich_dofs,
+                   dealii::ConditionalOStream     &quiet);
+      /// one h-refinement by Kelly's indicator on the modes @p pairs
+      /// flagged in @p above (all if empty), scaled to @p weights if given
+      void
+      refine_by_modes(const std::vector<eigen::EigenPair> &pairs,
+                      const std::vector<bool>             &above,
+                      const std::vector<double>           &weights,
+                      const parameters::ScalarPoint       &p0,
+                      dealii::ConditionalOStream          &quiet);
+      /// Mesh/Adaptive cycles and Mesh/Frequency tolerance: refine before
+      /// the sweep; adaptive_cycles.csv, adaptive_modes.csv
+      void
+      adapt_mesh();
+
+      const parameters::AllParameters &prm;
+      const dealii::ParameterHandler  &handler;
+      MPI_Comm                         comm;
+      dealii::ConditionalOStream       pcout;
+      mutable dealii::TimerOutput      timer;
+      std::string                      work_dir; ///< written, then renamed
+
+      /// The model of the sweep: built at Mesh/Finite element degree,
+      /// rebuilt at a higher degree on the same mesh when Mesh/Degree
+      /// adaptivity raises it (then from *raised_prm).
+      std::unique_ptr<physics::StructuralModel> model;
+      /// The parameters of a model whose degree was raised (else null).
+      std::unique_ptr<parameters::AllParameters> raised_prm;
+      /// The full solve of the sweep's first point on the final mesh of
+      /// adapt_mesh() (its last cycle), reused as that point by the full
+      /// sweep and by the check against the full solver instead of solving
+      /// it again (same model, same point, same band); empty without
+      /// adaptive cycles or a frequency tolerance.
+      std::vector<eigen::EigenPair> first_point_full;
+      eigen::ReducedModel           reduced;
+
+      /// The reduced basis' sample points: the ends of each swept
+      /// structural parameter's range and evenly spaced values between.
+      std::vector<parameters::ScalarPoint>
+      basis_samples() const;
+      /// "E_pad = 1e10 Pa, mu = 0.2" for a point, the swept ones only.
+      std::string
+      describe(const parameters::ScalarPoint &p) const;
+
+      struct Point
+      {
+        parameters::ScalarPoint           values;
+        std::vector<std::complex<double>> lambda;
+        std::vector<double>               residual;
+        std::vector<Eigen::VectorXcd>     q;    ///< reduced coordinates
+        std::vector<eigen::EigenPair>     full; ///< full-solver pairs
+      };
+      std::vector<Point>                 points;
+      std::vector<ModeRecord>            modes;
+      std::vector<eigen::UnstableRegion> regions;
+      std::vector<std::string>           check_rows;
+    };
+  } // namespace analyses
+} // namespace squeal
+
+#endif

@@ -1,0 +1,455 @@
+// The complex eigenvalue analysis driver: model set-up (with the preload and
+// the mesh refinement of cea_adaptivity.cc), the sweep over two scalar
+// parameters with the full or the reduced solver (points shared among MPI
+// ranks), the check of the reduced solver against the full one, mode
+// tracking and the unstable regions. The outputs are written by
+// cea_output.cc. It follows the tutorial class shape (setup_system, solve,
+// output_results, run) with a timer per phase.
+
+#include <deal.II/base/utilities.h>
+#include <deal.II/lac/petsc_vector.h>
+
+#include <squeal/analyses/cea.h>
+#include <squeal/analyses/preload.h>
+#include <squeal/eigen/mac.h>
+#include <squeal/io/output_directory.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace analyses
+  {
+    using namespace dealii;
+    namespace fs = std::filesystem;
+
+    ComplexEigenvalueAnalysis::ComplexEigenvalueAnalysis(
+      const parameters::AllParameters &prm,
+      const ParameterHandler          &handler,
+      MPI_Comm                         comm)
+      : prm(prm)
+      , handler(handler)
+      , comm(comm)
+      , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+      , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
+      , model(std::make_unique<physics::StructuralModel>(prm, comm))
+    {}
+
+
+    void
+    ComplexEigenvalueAnalysis::setup_system()
+    {
+      TimerOutput::Scope t(timer, "setup and assembly");
+      // Refuse to replace earlier results; write into a temporary directory
+      // that output_results() renames at the end.
+      work_dir =
+        io::partial_directory(prm.output.directory, prm.output.overwrite);
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          io::fresh_directory(work_dir, "modes");
+          std::ofstream out(fs::path(work_dir) / "parameters.prm");
+          handler.print_parameters(out, ParameterHandler::PRM);
+        }
+      MPI_Barrier(comm);
+      // the preload's nodal contact pressure at the pad nodes [Pa]
+      std::vector<std::pair<dealii::Point<3>, double>> preload_pressure;
+      if (prm.scene.analysis == "preloaded cea")
+        {
+          // The preload at the file's nominal parameters, written into
+          // preload/; the interface of the CEA then lives where the pad
+          // stayed in contact (nearest pad node's status).
+          parameters::AllParameters pre = prm;
+          pre.output.directory          = work_dir + "/preload";
+          pre.output.overwrite          = true;
+          analyses::PreloadAnalysis preload(pre, handler, comm);
+          preload.run();
+          const contact::MortarOperators &op = preload.interface();
+          std::vector<std::pair<dealii::Point<3>, double>> nodes;
+          for (unsigned int j = 0; j < op.n_slave(); ++j)
+            {
+              nodes.emplace_back(op.slave_points[j],
+                                 preload.solution().status[j] != 0 ? 1. : 0.);
+              preload_pressure.emplace_back(
+                op.slave_points[j], preload.solution().nodal_pressure[j]);
+            }
+          model->interface_mask = [nodes](const dealii::Point<3> &x) {
+            double best = 1e300, value = 0.;
+            for (const auto &[p, v] : nodes)
+              if (p.distance(x) < best)
+                {
+                  best  = p.distance(x);
+                  value = v;
+                }
+            return value;
+          };
+        }
+      model->setup_and_assemble(pcout);
+      refine_at_contact(preload_pressure);
+      adapt_mesh();
+    }
+
+    std::vector<parameters::ScalarPoint>
+    ComplexEigenvalueAnalysis::basis_samples() const
+    {
+      const unsigned int                   n = prm.eigensolver.reduced_samples;
+      std::vector<parameters::ScalarPoint> samples{prm.sweep_points()[0]};
+      for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
+        {
+          if (!parameters::sweepable_parameter(axis->parameter).structural)
+            continue;
+          const auto [lo, hi] =
+            std::minmax_element(axis->values.begin(), axis->values.end());
+          const bool          log = axis->log_scale();
+          std::vector<double> values;
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const double t = n == 1 ? 0.5 : double(i) / (n - 1);
+              values.push_back(log ? *lo * std::pow(*hi / *lo, t) :
+                                     *lo + (*hi - *lo) * t);
+              if (*hi == *lo)
+                break;
+            }
+          std::vector<parameters::ScalarPoint> combined;
+          for (const auto &s : samples)
+            for (const double v : values)
+              {
+                combined.push_back(s);
+                combined.back().set(axis->parameter, v);
+              }
+          samples = combined;
+        }
+      return samples;
+    }
+
+    std::string
+    ComplexEigenvalueAnalysis::describe(const parameters::ScalarPoint &p) const
+    {
+      std::ostringstream s;
+      s << std::setprecision(4);
+      for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
+        {
+          const auto &info = parameters::sweepable_parameter(axis->parameter);
+          s << (axis == &prm.sweep.first ? "" : ", ") << info.symbol << " = "
+            << p.get(axis->parameter);
+          if (info.unit[0])
+            s << ' ' << info.unit;
+        }
+      return s.str();
+    }
+
+    void
+    ComplexEigenvalueAnalysis::solve_sweep()
+    {
+      const auto        &es = prm.eigensolver;
+      eigen::BandOptions band{
+        es.f_min, es.f_max, es.target_frequency, es.tolerance, 40};
+      const bool reduced_method = es.method == "reduced";
+      if (reduced_method)
+        {
+          TimerOutput::Scope t(timer, "reduced basis");
+          pcout << "Building the reduced basis" << std::endl;
+          reduced.build(model->parts(),
+                        basis_samples(),
+                        band,
+                        es.reduced_band_factor,
+                        es.reduced_enrichment ? es.reduced_enrichment_depth : 0,
+                        pcout);
+        }
+
+      const auto         sweep    = prm.sweep_points();
+      const unsigned int n_points = sweep.size();
+      pcout << "Sweep: " << prm.sweep.second.values.size() << " x "
+            << prm.sweep.second.parameter << ", "
+            << prm.sweep.first.values.size() << " x "
+            << prm.sweep.first.parameter << " = " << n_points << " points, "
+            << (reduced_method ? "reduced" : "full") << " solver, band "
+            << es.f_min << "-" << es.f_max << " Hz" << std::endl;
+      const auto start    = std::chrono::steady_clock::now();
+      const auto progress = [&](const unsigned int k,
+                                const auto        &values,
+                                const unsigned int n_modes) {
+        const double elapsed = std::chrono::duration<double>(
+                                 std::chrono::steady_clock::now() - start)
+                                 .count();
+        pcout << "  point " << k << " of " << n_points << " ("
+              << describe(values) << "): " << n_modes << " modes, elapsed "
+              << std::setprecision(3) << elapsed << " s, remaining ~"
+              << elapsed * (n_points - k) / k << " s" << std::setprecision(6)
+              << std::endl;
+      };
+      if (reduced_method)
+        {
+          // Sweep points are independent small dense problems: each rank
+          // solves every n_ranks-th point, then all results are shared.
+          TimerOutput::Scope t(timer, "reduced solve");
+          const unsigned int rank = Utilities::MPI::this_mpi_process(comm),
+                             size = Utilities::MPI::n_mpi_processes(comm);
+          std::vector<double> packed; // p, m, then (re, im, res, q) per pair
+          unsigned int        done = 0;
+          for (unsigned int p = rank; p < n_points; p += size)
+            {
+              const auto pairs = reduced.solve(sweep[p], es.f_min, es.f_max);
+              packed.push_back(p);
+              packed.push_back(pairs.size());
+              for (const auto &r : pairs)
+                {
+                  packed.insert(packed.end(),
+                                {r.lambda.real(), r.lambda.imag(), r.residual});
+                  for (const auto &z : r.q)
+                    packed.insert(packed.end(), {z.real(), z.imag()});
+                }
+              ++done;
+              const unsigned int k = std::min(n_points, done * size);
+              if (k == n_points || k % 10 < size)
+                progress(k, sweep[p], pairs.size());
+            }
+          points.resize(n_points);
+          const int r = reduced.size();
+          for (const auto &part : Utilities::MPI::all_gather(comm, packed))
+            for (std::size_t i = 0; i < part.size();)
+              {
+                Point &pt = points[static_cast<unsigned int>(part[i])];
+                const unsigned int m = part[i + 1];
+                i += 2;
+                for (unsigned int j = 0; j < m; ++j, i += 3 + 2 * r)
+                  {
+                    pt.lambda.emplace_back(part[i], part[i + 1]);
+                    pt.residual.push_back(part[i + 2]);
+                    Eigen::VectorXcd q(r);
+                    for (int c = 0; c < r; ++c)
+                      q[c] = {part[i + 3 + 2 * c], part[i + 4 + 2 * c]};
+                    pt.q.push_back(q);
+                  }
+              }
+          for (unsigned int p = 0; p < n_points; ++p)
+            points[p].values = sweep[p];
+          return;
+        }
+      for (const auto &values : sweep)
+        {
+          TimerOutput::Scope t(timer, "full solve");
+          Point              p;
+          p.values = values;
+          if (points.empty() && !first_point_full.empty())
+            {
+              p.full = first_point_full;
+              pcout << "  full solver: the last adaptive cycle's solve of "
+                       "this point, reused"
+                    << std::endl;
+            }
+          else
+            p.full = eigen::solve_full(model->parts(), values, band, pcout);
+          // 1.5 f_max holds about 1.7 times the modes of the band
+          band.initial_nev =
+            std::max<unsigned int>(40, 1.9 * p.full.size() + 10);
+          for (const auto &r : p.full)
+            {
+              p.lambda.push_back(r.lambda);
+              p.residual.push_back(r.residual);
+            }
+          points.push_back(std::move(p));
+          progress(points.size(), values, points.back().lambda.size());
+        }
+    }
+
+    void
+    ComplexEigenvalueAnalysis::check_against_full()
+    {
+      const auto &es = prm.eigensolver;
+      if (es.method != "reduced" || es.n_check_points == 0 || points.empty())
+        return;
+      TimerOutput::Scope t(timer, "check against full");
+      // The most unstable point, then evenly spaced ones.
+      std::vector<unsigned int> chosen;
+      unsigned int              worst  = 0;
+      double                    max_re = -1e300;
+      for (unsigned int p = 0; p < points.size(); ++p)
+        for (const auto &l : points[p].lambda)
+          if (l.real() > max_re)
+            {
+              max_re = l.real();
+              worst  = p;
+            }
+      chosen.push_back(worst);
+      for (unsigned int k = 0;
+           chosen.size() <
+           std::min<std::size_t>(es.n_check_points, points.size());
+           ++k)
+        {
+          const unsigned int p =
+            (k * (points.size() - 1)) / std::max(1u, es.n_check_points - 1);
+          if (std::find(chosen.begin(), chosen.end(), p) == chosen.end())
+            chosen.push_back(p);
+          if (k > points.size())
+            break;
+        }
+      pcout << "Checking the reduced solver against the full solver at "
+            << chosen.size() << " points" << std::endl;
+      // about as many modes up to 1.5 f_max as each basis sample had
+      eigen::BandOptions band{
+        es.f_min,
+        es.f_max,
+        es.target_frequency,
+        es.tolerance,
+        std::max(40u, 5 * reduced.sample_mode_count() / 4 + 10)};
+      double       max_df = 0, max_dre = 0;
+      unsigned int missed = 0;
+      for (const unsigned int p : chosen)
+        {
+          const bool reuse = p == 0 && !first_point_full.empty();
+          if (reuse)
+            pcout << "  point 0: the last adaptive cycle's full solve, reused"
+                  << std::endl;
+          const auto full =
+            reuse ?
+              first_point_full :
+              eigen::solve_full(model->parts(), points[p].values, band, pcout);
+          // Every full eigenvalue must have a reduced counterpart.
+          for (const auto &f : full)
+            {
+              double               best = 1e300;
+              std::complex<double> match;
+              for (const auto &r : points[p].lambda)
+                if (std::abs(r - f.lambda) < best)
+                  {
+                    best  = std::abs(r - f.lambda);
+                    match = r;
+                  }
+              const double df =
+                std::abs(match.imag() - f.lambda.imag()) / f.lambda.imag();
+              const double dre = std::abs(match.real() - f.lambda.real()) /
+                                 (std::abs(f.lambda.real()) + 1.);
+              if (df > 1e-2)
+                ++missed;
+              max_df  = std::max(max_df, df);
+              max_dre = std::max(max_dre, dre);
+              std::ostringstream row;
+              row << std::setprecision(12) << p << ',' << points[p].values.mu
+                  << ',' << points[p].values.E_pad << ',' << f.lambda.real()
+                  << ',' << f.lambda.imag() / (2 * M_PI) << ',' << match.real()
+                  << ',' << match.imag() / (2 * M_PI) << ',' << df << ','
+                  << dre;
+              check_rows.push_back(row.str());
+            }
+          if (full.size() != points[p].lambda.size())
+            pcout << "  point " << p << ": full solver " << full.size()
+                  << " modes in the band, reduced " << points[p].lambda.size()
+                  << " (modes at the band edges may differ)" << std::endl;
+        }
+      pcout << "Reduced against full: largest frequency error " << 100 * max_df
+            << " %, largest growth-rate error " << 100 * max_dre
+            << " % of |Re| + 1 1/s";
+      if (missed > 0)
+        pcout << "; WARNING: " << missed
+              << " full eigenvalues without a reduced one within 1 %";
+      pcout << std::endl;
+    }
+
+    void
+    ComplexEigenvalueAnalysis::classify()
+    {
+      TimerOutput::Scope t(timer, "tracking and classification");
+      const double       tol     = prm.eigensolver.unstable_tolerance;
+      int                next_id = 0;
+      unsigned int       first   = 0;
+      while (first < points.size())
+        {
+          // One value of the second parameter: a run of the first.
+          const auto second = [&](const unsigned int p) {
+            return points[p].values.get(prm.sweep.second.parameter);
+          };
+          unsigned int last = first;
+          while (last + 1 < points.size() && second(last + 1) == second(first))
+            ++last;
+          std::vector<std::vector<std::complex<double>>> lambdas;
+          std::vector<Eigen::MatrixXd>                   macs;
+          std::vector<double>                            x;
+          std::vector<unsigned int>                      index;
+          for (unsigned int p = first; p <= last; ++p)
+            {
+              lambdas.push_back(points[p].lambda);
+              x.push_back(points[p].values.get(prm.sweep.first.parameter));
+              index.push_back(p);
+              Eigen::MatrixXd mac;
+              if (p > first)
+                {
+                  const auto &a = points[p - 1], &b = points[p];
+                  mac.resize(a.lambda.size(), b.lambda.size());
+                  for (unsigned int i = 0; i < a.lambda.size(); ++i)
+                    for (unsigned int j = 0; j < b.lambda.size(); ++j)
+                      mac(i, j) = !a.q.empty() ?
+                                    eigen::complex_mac(a.q[i], b.q[j]) :
+                                    eigen::complex_mac(a.full[i].re,
+                                                       a.full[i].im,
+                                                       b.full[j].re,
+                                                       b.full[j].im);
+                }
+              macs.push_back(mac);
+            }
+          const auto tracks = eigen::track_modes(lambdas, macs, next_id);
+          for (unsigned int p = first; p <= last; ++p)
+            for (unsigned int m = 0; m < points[p].lambda.size(); ++m)
+              {
+                const auto l = points[p].lambda[m];
+                modes.push_back({p,
+                                 points[p].values,
+                                 m,
+                                 l,
+                                 points[p].residual[m],
+                                 l.real() > tol,
+                                 tracks[p - first][m]});
+              }
+          const auto r = eigen::find_unstable_regions(
+            second(first), x, index, lambdas, tracks, tol);
+          regions.insert(regions.end(), r.begin(), r.end());
+          first = last + 1;
+        }
+
+      pcout << "\nUnstable regions (Re lambda > " << tol
+            << " 1/s):" << std::endl;
+      if (regions.empty())
+        pcout << "  none: every eigenvalue in the band is stable" << std::endl;
+      const auto &first_info =
+        parameters::sweepable_parameter(prm.sweep.first.parameter);
+      const auto &second_info =
+        parameters::sweepable_parameter(prm.sweep.second.parameter);
+      for (const auto &r : regions)
+        {
+          std::ostringstream log10;
+          if (prm.sweep.first.log_scale())
+            log10 << std::setprecision(4) << " (log10 "
+                  << std::log10(r.first_min) << " - " << std::log10(r.first_max)
+                  << ")";
+          pcout << "  " << second_info.symbol << " = " << r.second << ": "
+                << first_info.symbol << " " << std::setprecision(4)
+                << r.first_min << " - " << r.first_max << ' ' << first_info.unit
+                << log10.str() << ", " << std::setprecision(5) << r.f_min
+                << " - " << r.f_max << " Hz, max Re lambda " << r.max_re
+                << " 1/s, track " << r.track
+                << (r.partner_track >= 0 ? " locked in with track " +
+                                             std::to_string(r.partner_track) :
+                                           std::string())
+                << std::setprecision(6) << std::endl;
+        }
+    }
+    void
+    ComplexEigenvalueAnalysis::run()
+    {
+      pcout << "squeal: complex eigenvalue analysis ("
+            << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s))"
+            << std::endl;
+      setup_system();
+      solve_sweep();
+      check_against_full();
+      classify();
+      output_results();
+      timer.print_summary();
+    }
+  } // namespace analyses
+} // namespace squeal

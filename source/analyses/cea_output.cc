@@ -1,0 +1,227 @@
+// The CEA's outputs: eigenvalues.csv, unstable_regions.csv,
+// check_full.csv, mode_participation.csv (kinetic-energy shares per body
+// and the mode names of mode_naming.h), the mode shapes (modes.pvd) and the
+// error indicator, written into the work folder and published at the end.
+
+#include <deal.II/base/utilities.h>
+#include <deal.II/lac/petsc_vector.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <squeal/analyses/cea.h>
+#include <squeal/analyses/mode_naming.h>
+#include <squeal/io/output_directory.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace squeal
+{
+  namespace analyses
+  {
+    using namespace dealii;
+
+
+    void
+    ComplexEigenvalueAnalysis::write_mode(const physics::PETScVector &re,
+                                          const physics::PETScVector &im,
+                                          const std::string &name) const
+    {
+      physics::PETScVector ghosted_re(model->locally_owned_dofs,
+                                      model->locally_relevant_dofs,
+                                      comm),
+        ghosted_im(model->locally_owned_dofs,
+                   model->locally_relevant_dofs,
+                   comm);
+      physics::PETScVector r = re, i = im;
+      model->constraints.distribute(r);
+      model->constraints.distribute(i);
+      ghosted_re = r;
+      ghosted_im = i;
+
+      DataOut<3> data_out;
+      data_out.attach_dof_handler(model->dof_handler);
+      const std::vector<
+        DataComponentInterpretation::DataComponentInterpretation>
+        vector(3, DataComponentInterpretation::component_is_part_of_vector);
+      data_out.add_data_vector(ghosted_re,
+                               std::vector<std::string>(3, "mode_real"),
+                               DataOut<3>::type_dof_data,
+                               vector);
+      data_out.add_data_vector(ghosted_im,
+                               std::vector<std::string>(3, "mode_imag"),
+                               DataOut<3>::type_dof_data,
+                               vector);
+      Vector<float> material(model->triangulation.n_active_cells());
+      for (const auto &cell : model->triangulation.active_cell_iterators())
+        material[cell->active_cell_index()] = cell->material_id();
+      data_out.add_data_vector(material, "body");
+      data_out.build_patches(model->mapping,
+                             model->fe.degree,
+                             DataOut<3>::curved_inner_cells);
+      data_out.write_vtu_with_pvtu_record(
+        work_dir + "/modes/", name, 0, comm, 0, 0);
+    }
+
+
+    void
+    ComplexEigenvalueAnalysis::output_results() const
+    {
+      TimerOutput::Scope t(timer, "output");
+      const bool         root = Utilities::MPI::this_mpi_process(comm) == 0;
+      if (root)
+        {
+          std::ofstream csv(work_dir + "/eigenvalues.csv");
+          // The contract's columns, then any swept parameter beyond mu and
+          // the pad modulus.
+          std::vector<std::string> extra;
+          for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
+            if (axis->parameter != "pad modulus" &&
+                axis->parameter != "friction coefficient")
+              extra.push_back(axis->parameter);
+          csv << "point,mu,E_pad_Pa,mode,re_per_s,freq_Hz,zeta,unstable,track";
+          for (const auto &e : extra)
+            csv << ',' << parameters::column_name(e);
+          csv << '\n' << std::setprecision(12);
+          std::ofstream res(work_dir + "/eigenvalue_residuals.csv");
+          res << "point,mode,relative_residual\n" << std::setprecision(6);
+          for (const auto &m : modes)
+            {
+              csv << m.point << ',' << m.values.mu << ',' << m.values.E_pad
+                  << ',' << m.mode << ',' << m.lambda.real() << ','
+                  << m.lambda.imag() / (2 * M_PI) << ','
+                  << -m.lambda.real() / std::abs(m.lambda) << ','
+                  << (m.unstable ? 1 : 0) << ',' << m.track;
+              for (const auto &e : extra)
+                csv << ',' << m.values.get(e);
+              csv << '\n';
+              res << m.point << ',' << m.mode << ',' << m.residual << '\n';
+            }
+          std::ofstream axes(work_dir + "/sweep_axes.csv");
+          axes << "axis,parameter,column,log\n";
+          for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
+            axes << (axis == &prm.sweep.first ? "first," : "second,")
+                 << axis->parameter << ','
+                 << parameters::column_name(axis->parameter) << ','
+                 << (axis->log_scale() ? 1 : 0) << '\n';
+          std::ofstream reg(work_dir + "/unstable_regions.csv");
+          // mu,E_pad_min_Pa,E_pad_max_Pa,... for the default sweep
+          const auto &f = prm.sweep.first.parameter;
+          reg << parameters::column_name(prm.sweep.second.parameter) << ','
+              << parameters::column_name(f, "_min") << ','
+              << parameters::column_name(f, "_max")
+              << ",freq_min_Hz,freq_max_Hz,max_re_per_s,track\n"
+              << std::setprecision(12);
+          for (const auto &r : regions)
+            reg << r.second << ',' << r.first_min << ',' << r.first_max << ','
+                << r.f_min << ',' << r.f_max << ',' << r.max_re << ','
+                << r.track << '\n';
+          if (!check_rows.empty())
+            {
+              std::ofstream chk(work_dir + "/check_full.csv");
+              chk << "point,mu,E_pad_Pa,full_re_per_s,full_freq_Hz,"
+                     "reduced_re_per_s,reduced_freq_Hz,freq_rel_error,"
+                     "re_error_per_abs_re_plus_1\n";
+              for (const auto &r : check_rows)
+                chk << r << '\n';
+            }
+        }
+
+      // Mode shapes: all modes of the first point, and each unstable region
+      // at its largest growth rate (or, with Output/Mode shapes = all, every
+      // mode of every point).
+      std::vector<std::pair<unsigned int, unsigned int>> chosen;
+      const std::string what = prm.output.mode_output;
+      if (what != "none")
+        for (const auto &m : modes)
+          {
+            const bool unstable_peak =
+              std::any_of(regions.begin(), regions.end(), [&](const auto &r) {
+                return r.track == m.track && r.point_of_max == m.point;
+              });
+            if (what == "all" || m.point == 0 || unstable_peak)
+              chosen.emplace_back(m.point, m.mode);
+          }
+      // Kinetic-energy fraction of each body in each written mode, to name
+      // modes (disc, pad, support) and to calibrate the support.
+      std::ostringstream participation;
+      participation << "point,mode,freq_Hz,re_per_s";
+      for (const scene::Body &b : model->scene->bodies)
+        participation << ',' << b.name;
+      participation << ",name\n" << std::setprecision(8);
+
+      std::vector<std::pair<double, std::string>> records;
+      for (const auto &[p, k] : chosen)
+        {
+          const auto          &pt = points[p];
+          physics::PETScVector re, im;
+          if (!pt.q.empty())
+            reduced.expand(pt.q[k], re, im);
+          else if (!pt.full.empty())
+            {
+              re = pt.full[k].re;
+              im = pt.full[k].im;
+            }
+          else
+            continue;
+          {
+            // kinetic-energy shares with the whole mass of the point (every
+            // body at its density)
+            const std::vector<double> e =
+              physics::kinetic_energy_by_body(*model, pt.values, re, im);
+            const auto &bodies = model->scene->bodies;
+            const auto  share  = [&](const scene::Body &b) {
+              return b.id < e.size() ? e[b.id] : 0.;
+            };
+            double total = 0.;
+            for (const scene::Body &b : bodies)
+              total += share(b);
+            participation << p << ',' << k << ','
+                          << pt.lambda[k].imag() / (2 * M_PI) << ','
+                          << pt.lambda[k].real();
+            for (const scene::Body &b : bodies)
+              participation << ',' << share(b) / total;
+            // a disc carrying more than half the energy names the mode
+            // (s,n+-); otherwise the body carrying most besides the disc
+            const scene::Body *disc = model->scene->disc();
+            std::string        mode_name;
+            if (disc != nullptr && share(*disc) > 0.5 * total)
+              mode_name = disc_mode_name(*model, *disc, re, im);
+            else
+              {
+                double most = -1.;
+                for (const scene::Body &b : bodies)
+                  if (&b != disc && share(b) > most)
+                    {
+                      most      = share(b);
+                      mode_name = b.name;
+                    }
+              }
+            participation << ",\"" << mode_name << "\"\n";
+          }
+          std::ostringstream name;
+          name << "mode_p" << p << "_m" << k << "_" << std::fixed
+               << std::setprecision(1) << pt.lambda[k].imag() / (2 * M_PI)
+               << "Hz_re" << std::setprecision(3) << pt.lambda[k].real();
+          write_mode(re, im, name.str());
+          records.emplace_back(records.size(), "modes/" + name.str() + ".pvtu");
+        }
+      write_error_indicator();
+      if (root)
+        {
+          std::ofstream pvd(work_dir + "/modes.pvd");
+          DataOutBase::write_pvd_record(pvd, records);
+          std::ofstream(work_dir + "/mode_participation.csv")
+            << participation.str();
+        }
+      MPI_Barrier(comm);
+      if (root)
+        io::publish_directory(work_dir, prm.output.directory);
+      MPI_Barrier(comm);
+      pcout << "Results written to " << prm.output.directory << "/"
+            << std::endl;
+    }
+
+  } // namespace analyses
+} // namespace squeal

@@ -1,0 +1,229 @@
+// The program's command line, parameter reading (with --resume), scene
+// validation and export, and the dispatch to the analysis of Scene/Analysis.
+
+#include <squeal/analyses/braking.h>
+#include <squeal/analyses/cea.h>
+#include <squeal/analyses/preload.h>
+#include <squeal/analyses/run.h>
+#include <squeal/io/mesh_file.h>
+#include <squeal/scene/scene.h>
+
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace analyses
+  {
+    using namespace dealii;
+    namespace fs = std::filesystem;
+
+    const char usage[] =
+      "usage: squeal [--overwrite] FILE.prm | --validate FILE.prm | "
+      "--export-mesh OUT.inp FILE.prm | --resume DIRECTORY | "
+      "--print-parameters";
+
+    CommandLine
+    parse_command_line(const std::vector<std::string> &args)
+    {
+      CommandLine cl;
+      if (args.size() == 1 && args[0] == "--print-parameters")
+        {
+          cl.print_parameters = true;
+          return cl;
+        }
+      for (unsigned int i = 0; i < args.size(); ++i)
+        if (const std::string &a = args[i]; a == "--validate")
+          cl.validate = true;
+        else if (a == "--export-mesh")
+          {
+            if (i + 1 == args.size() || args[i + 1].empty() ||
+                args[i + 1][0] == '-')
+              throw std::runtime_error("--export-mesh needs the .inp file to "
+                                       "write\n" +
+                                       std::string(usage));
+            cl.export_mesh = args[++i];
+          }
+        else if (a == "--resume")
+          cl.resume = true;
+        else if (a == "--overwrite")
+          cl.overwrite = true;
+        else if (!a.empty() && a[0] == '-')
+          throw std::runtime_error("unknown option '" + a + "'\n" + usage);
+        else if (cl.file.empty())
+          cl.file = a;
+        else
+          throw std::runtime_error("more than one parameter file given\n" +
+                                   std::string(usage));
+      if (cl.file.empty())
+        throw std::runtime_error(
+          std::string(cl.resume ? "no directory" : "no parameter file") +
+          " given\n" + usage);
+      return cl;
+    }
+
+    void
+    read_parameters(const CommandLine         &cl,
+                    parameters::AllParameters &prm,
+                    ParameterHandler          &handler)
+    {
+      if (cl.resume)
+        {
+          // A braking run's folder: DIRECTORY.partial holds the parameters
+          // it was started with and its checkpoint.
+          std::string directory = fs::path(cl.file).lexically_normal().string();
+          while (directory.size() > 1 && directory.back() == '/')
+            directory.pop_back();
+          const std::string suffix = ".partial";
+          if (directory.size() > suffix.size() &&
+              directory.compare(directory.size() - suffix.size(),
+                                suffix.size(),
+                                suffix) == 0)
+            directory.resize(directory.size() - suffix.size());
+          const std::string partial = directory + suffix;
+          if (!fs::is_directory(partial))
+            throw std::runtime_error(
+              "--resume " + cl.file + ": no run in progress ('" + partial +
+              "' does not exist" +
+              (fs::is_directory(directory) ?
+                 "; '" + directory + "' holds a finished run" :
+                 "") +
+              ")");
+          prm.read(handler, partial + "/parameters.prm");
+          if (prm.scene.analysis != "braking")
+            throw std::runtime_error("--resume " + cl.file +
+                                     ": only braking runs can be resumed (" +
+                                     partial +
+                                     "/parameters.prm has Scene/"
+                                     "Analysis = " +
+                                     prm.scene.analysis + ")");
+          prm.output.directory = directory;
+        }
+      else
+        prm.read(handler, cl.file);
+      prm.output.overwrite = prm.output.overwrite || cl.overwrite;
+    }
+
+    namespace
+    {
+      // The one-line summary of a valid file.
+      void
+      print_summary(const CommandLine &cl, const parameters::AllParameters &prm)
+      {
+        std::cout << cl.file << ": valid (scene " << prm.scene.type << ", "
+                  << prm.scene.analysis;
+        if (prm.scene.analysis == "braking")
+          std::cout << ", " << prm.transient.normal_force << " N, "
+                    << prm.transient.end_time << " s"
+                    << (prm.transient.grid ?
+                          ", a grid of " +
+                            std::to_string(prm.sweep_points().size()) +
+                            " runs" :
+                          std::string());
+        else if (prm.scene.analysis != "preload")
+          std::cout << ", " << prm.sweep.second.values.size() << " x "
+                    << prm.sweep.first.values.size() << " sweep points";
+        else
+          std::cout << ", " << prm.preload.normal_force << " N";
+        std::cout << ", output to " << prm.output.directory << ")" << std::endl;
+      }
+    } // namespace
+
+    void
+    validate_or_export(const CommandLine               &cl,
+                       const parameters::AllParameters &prm,
+                       const bool                       root)
+    {
+      // the scene, checked against its mesh and the analysis
+      const auto scene = scene::make_scene(prm);
+      scene::check_for_analysis(*scene,
+                                prm.scene.analysis,
+                                prm.scene.analysis == "braking" &&
+                                  prm.transient.initial_perturbation > 0.);
+      if (!cl.export_mesh.empty())
+        {
+          if (fs::exists(cl.export_mesh) && !cl.overwrite)
+            throw std::runtime_error("--export-mesh: '" + cl.export_mesh +
+                                     "' exists; give --overwrite to "
+                                     "replace it");
+          Triangulation<3> tria;
+          scene->make_mesh(tria);
+          if (tria.n_levels() > 1)
+            throw std::runtime_error(
+              "--export-mesh writes the coarse mesh; this scene refines "
+              "its mesh as it makes it (Mesh/Disc refinements under pad "
+              "> 0)");
+          if (root)
+            {
+              io::write_abaqus(tria, scene->named_sets(tria), cl.export_mesh);
+              std::cout << "Wrote " << cl.export_mesh << ": "
+                        << tria.n_active_cells() << " cells of scene "
+                        << scene->description() << std::endl;
+            }
+          return;
+        }
+      if (root)
+        print_summary(cl, prm);
+    }
+
+    namespace
+    {
+      // Runs ANALYSIS.run() (or what RUN does with it) and returns the
+      // message of a failure ("" on success) after the analysis is gone.
+      template <typename Analysis, typename Run>
+      std::string
+      run_caught(const parameters::AllParameters &prm,
+                 const ParameterHandler          &handler,
+                 MPI_Comm                         comm,
+                 const Run                       &run)
+      {
+        Analysis analysis(prm, handler, comm);
+        try
+          {
+            run(analysis);
+          }
+        catch (const std::exception &e)
+          {
+            return e.what();
+          }
+        return "";
+      }
+    } // namespace
+
+    void
+    run_analysis(const parameters::AllParameters &prm,
+                 const ParameterHandler          &handler,
+                 const bool                       resume,
+                 MPI_Comm                         comm)
+    {
+      std::string failure;
+      if (prm.scene.analysis == "braking" && prm.transient.grid)
+        {
+          if (resume)
+            throw std::runtime_error(
+              "a braking grid cannot be resumed (its points write no "
+              "checkpoints); run it again");
+          run_braking_grid(prm, handler, comm);
+        }
+      else if (prm.scene.analysis == "braking")
+        failure = run_caught<BrakingAnalysis>(prm,
+                                              handler,
+                                              comm,
+                                              [resume](BrakingAnalysis &a) {
+                                                if (resume)
+                                                  a.resume();
+                                                else
+                                                  a.run();
+                                              });
+      else if (prm.scene.analysis == "preload")
+        failure = run_caught<PreloadAnalysis>(
+          prm, handler, comm, [](PreloadAnalysis &a) { a.run(); });
+      else // cea, preloaded cea
+        failure = run_caught<ComplexEigenvalueAnalysis>(
+          prm, handler, comm, [](ComplexEigenvalueAnalysis &a) { a.run(); });
+      if (!failure.empty())
+        throw std::runtime_error(failure);
+    }
+  } // namespace analyses
+} // namespace squeal

@@ -1,0 +1,358 @@
+// The analyses' subsections: Preload, Transient (the braking run) and
+// Eigensolver.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <squeal/parameters/parameters.h>
+
+#include "entries.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace parameters
+  {
+    using namespace dealii;
+    using internal::check;
+    using internal::positive;
+    using internal::str;
+
+    void
+    Preload::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Preload");
+      prm.declare_entry("Normal force",
+                        str(normal_force),
+                        Patterns::Double(0.),
+                        "Force on the support's top pressing the pad on the "
+                        "disc [N], spread uniformly over the top face.");
+      prm.declare_entry("Friction",
+                        friction,
+                        Patterns::Selection(
+                          "steady sliding|coulomb|frictionless"),
+                        "steady sliding: every pad node in contact slips "
+                        "along the disc's sliding direction (Interface/"
+                        "Sliding direction), traction mu p, as in CEA "
+                        "practice; coulomb: stick/slip from the incremental "
+                        "Coulomb law (semi-smooth Newton), the load in Load "
+                        "steps increments, the disc at rest or turning by "
+                        "Disc slip per step; frictionless. mu is "
+                        "Interface/Friction coefficient.");
+      prm.declare_entry("Search distance",
+                        str(search_distance),
+                        Patterns::Double(1e-9),
+                        "How far along the pad face's normal the disc face is "
+                        "searched [m]; bodies overlapping by more are "
+                        "refused.");
+      prm.declare_entry("Load steps",
+                        std::to_string(load_steps),
+                        Patterns::Integer(1, 1000),
+                        "Increments of the normal force; each step's "
+                        "contact state is written (contact_step_NNN.csv, "
+                        "contact.pvd). With coulomb the path matters.");
+      prm.declare_entry("Disc slip per step",
+                        str(disc_slip),
+                        Patterns::Double(0.),
+                        "With Friction = coulomb: how far the disc's surface "
+                        "moves under the pad along Interface/Sliding "
+                        "direction during each load step [m] (the disc "
+                        "turning); 0 keeps the disc at rest, so only the "
+                        "pad's own deformation slips. A slip much larger than "
+                        "the elastic one makes every node in contact slip and "
+                        "reproduces steady sliding.");
+      prm.declare_entry("Segmentation refresh",
+                        str(segmentation_refresh),
+                        Patterns::Double(0.),
+                        "Large sliding: after a load step, the mortar "
+                        "segmentation is rebuilt on the deformed surfaces "
+                        "when the pad's largest relative tangential "
+                        "displacement against the disc since the last one "
+                        "exceeds this fraction of the shortest pad face "
+                        "edge (0: never). The preload's elastic slips are "
+                        "far below it, so it builds the segmentation once.");
+      prm.leave_subsection();
+    }
+
+    void
+    Preload::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Preload");
+      normal_force         = prm.get_double("Normal force");
+      friction             = prm.get("Friction");
+      search_distance      = prm.get_double("Search distance");
+      load_steps           = prm.get_integer("Load steps");
+      disc_slip            = prm.get_double("Disc slip per step");
+      segmentation_refresh = prm.get_double("Segmentation refresh");
+      prm.leave_subsection();
+      check(disc_slip == 0. || friction == "coulomb",
+            "Preload/Disc slip per step = " + str(disc_slip) +
+              " needs Preload/Friction = coulomb (got " + friction +
+              "): the other friction laws have no slip history");
+    }
+
+    void
+    Transient::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Transient");
+      prm.declare_entry("Angular velocity",
+                        str(angular_velocity),
+                        Patterns::Double(0.),
+                        "Disc speed [rad/s] (10 rpm = 1.0472). The rotation "
+                        "enters as the sliding velocity omega r of the disc "
+                        "face under the pad, in the disc's fixed mesh "
+                        "(Interface/Rotation sense); transport terms, of "
+                        "order omega / omega_mode (1e-4), are neglected.");
+      prm.declare_entry("Normal force",
+                        str(normal_force),
+                        Patterns::Double(0.),
+                        "Final force on the support's top [N].");
+      prm.declare_entry("Ramp duration",
+                        str(ramp_duration),
+                        Patterns::Double(0.),
+                        "The force rises as (1 - cos(pi t / T)) / 2 over this "
+                        "time [s], so that the first contact does not excite "
+                        "the structure, then is held.");
+      prm.declare_entry("End time",
+                        str(end_time),
+                        Patterns::Double(1e-9),
+                        "Simulated time [s].");
+      prm.declare_entry("Time step",
+                        str(time_step),
+                        Patterns::Double(0.),
+                        "Time step [s]; 0: Safety factor x the computed "
+                        "stability limit. A step above the limit is refused.");
+      prm.declare_entry("Safety factor",
+                        str(safety_factor),
+                        Patterns::Double(1e-3, 1.),
+                        "Fraction of the stability limit used when Time step "
+                        "is 0.");
+      prm.declare_entry("Beta2",
+                        str(beta2),
+                        Patterns::Double(0.5, 1.),
+                        "The beta2 parameter of the explicit scheme (thesis "
+                        "eq. 2-6): 0.5 is central differences; larger values "
+                        "damp high frequencies numerically.");
+      prm.declare_entry("Sampling rate",
+                        str(sampling_rate),
+                        Patterns::Double(1.),
+                        "Rate [Hz] of forces.csv, probes.csv and the contact "
+                        "history (contact_history.h5); at most 1 / time step.");
+      prm.declare_entry("History start",
+                        str(history_start),
+                        Patterns::Double(0.),
+                        "Time [s] of the first sample of the contact history.");
+      prm.declare_entry("Snapshot interval",
+                        str(snapshot_interval),
+                        Patterns::Double(0.),
+                        "Time [s] between ParaView snapshots (transient.pvd: "
+                        "displacement, velocity, von Mises stress; "
+                        "contact.pvd: the pad face's contact fields); 0: "
+                        "none besides the animation window.");
+      prm.declare_entry("Animation start",
+                        str(animation_start),
+                        Patterns::Double(),
+                        "Start [s] of a window of Animation frames snapshots "
+                        "spread over Animation period (animation.pvd, for "
+                        "one squeal period in ParaView); < 0: the window "
+                        "ends at End time.");
+      prm.declare_entry("Animation period",
+                        str(animation_period),
+                        Patterns::Double(0.),
+                        "Length [s] of the animation window: one period of "
+                        "the expected squeal (1 / 3430 Hz for the TriboBrake "
+                        "of the thesis).");
+      prm.declare_entry("Animation frames",
+                        std::to_string(animation_frames),
+                        Patterns::Integer(0, 1000),
+                        "Snapshots in the animation window; 0: none.");
+      prm.declare_entry("Spectrum start",
+                        str(spectrum_start),
+                        Patterns::Double(),
+                        "Start [s] of the window of the power spectral "
+                        "density (Welch) of the probe's acceleration; < 0: "
+                        "the second half of the run.");
+      prm.declare_entry("Contact tolerance",
+                        str(contact_tolerance),
+                        Patterns::Double(1e-16, 1e-2),
+                        "Relative change of the contact multipliers at which "
+                        "projected Gauss-Seidel stops.");
+      prm.declare_entry("Contact iterations",
+                        std::to_string(contact_iterations),
+                        Patterns::Integer(1),
+                        "Most projected Gauss-Seidel sweeps per step; more "
+                        "stops the run with the time and the residual.");
+      prm.declare_entry("Initial perturbation",
+                        str(initial_perturbation),
+                        Patterns::Double(0.),
+                        "Axial velocity [m/s] given to the disc at t = 0 in "
+                        "the shape of a (0,3) mode (cos 3 theta, rising with "
+                        "the radius), a seed for an instability; 0: none "
+                        "(the load ramp and rounding seed it).");
+      prm.declare_entry("Stiffness product",
+                        stiffness_product,
+                        Patterns::Selection("matrix-free|sparse"),
+                        "How K u is computed each step: matrix-free (deal.II "
+                        "MatrixFree, sum factorisation, vectorised and "
+                        "multithreaded) or sparse (the assembled matrix). "
+                        "Both are timed at set-up and printed; see "
+                        "benchmarks/transient/README.md.");
+      prm.declare_entry("Checkpoint interval",
+                        std::to_string(checkpoint_interval),
+                        Patterns::Integer(0),
+                        "Time steps between checkpoints, written into "
+                        "DIRECTORY.partial/checkpoint/ while the run goes "
+                        "(and removed when it ends); `squeal --resume "
+                        "DIRECTORY` continues a killed run from the last one "
+                        "and gives the same result as an uninterrupted run. "
+                        "0: none.");
+      prm.declare_entry("Grid",
+                        grid ? "true" : "false",
+                        Patterns::Bool(),
+                        "true: one braking simulation at every point of the "
+                        "Sweep subsection (its two parameters and values, as "
+                        "for the CEA; keep it small), each in its own folder "
+                        "under Output/Directory, and one stability table "
+                        "(stability_table.csv; scripts/plot_braking_grid.py "
+                        "draws stability_map.png) to lay "
+                        "over the CEA's unstable regions. No checkpoints in "
+                        "a grid.");
+      prm.leave_subsection();
+    }
+
+    void
+    Transient::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Transient");
+      angular_velocity     = prm.get_double("Angular velocity");
+      normal_force         = prm.get_double("Normal force");
+      ramp_duration        = prm.get_double("Ramp duration");
+      end_time             = prm.get_double("End time");
+      time_step            = prm.get_double("Time step");
+      safety_factor        = prm.get_double("Safety factor");
+      beta2                = prm.get_double("Beta2");
+      sampling_rate        = prm.get_double("Sampling rate");
+      history_start        = prm.get_double("History start");
+      snapshot_interval    = prm.get_double("Snapshot interval");
+      animation_start      = prm.get_double("Animation start");
+      animation_period     = prm.get_double("Animation period");
+      animation_frames     = prm.get_integer("Animation frames");
+      spectrum_start       = prm.get_double("Spectrum start");
+      contact_tolerance    = prm.get_double("Contact tolerance");
+      contact_iterations   = prm.get_integer("Contact iterations");
+      initial_perturbation = prm.get_double("Initial perturbation");
+      stiffness_product    = prm.get("Stiffness product");
+      checkpoint_interval  = prm.get_integer("Checkpoint interval");
+      grid                 = prm.get_bool("Grid");
+      prm.leave_subsection();
+      check(history_start < end_time,
+            "Transient/History start must be below Transient/End time");
+    }
+    void
+    Eigensolver::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Eigensolver");
+      prm.declare_entry("Minimum frequency",
+                        str(f_min),
+                        positive,
+                        "Lower end of the band [Hz].");
+      prm.declare_entry("Maximum frequency",
+                        str(f_max),
+                        positive,
+                        "Upper end of the band [Hz].");
+      prm.declare_entry("Method",
+                        method,
+                        Patterns::Selection("full|reduced"),
+                        "full: at every point, SLEPc Krylov-Schur on the "
+                        "undamped friction-coupled problem (real shift-and-"
+                        "invert, MUMPS), then the damped problem on that "
+                        "subspace, refined to relative residual 1e-8; "
+                        "reduced: modal "
+                        "basis with friction enrichment, dense LAPACK per "
+                        "point, checked against full at a few points.");
+      prm.declare_entry("Tolerance",
+                        str(tolerance),
+                        Patterns::Double(1e-15, 1e-3),
+                        "Relative convergence tolerance of SLEPc.");
+      prm.declare_entry("Target frequency",
+                        str(target_frequency),
+                        positive,
+                        "The real shift is -2 pi times this [Hz]: eigenvalues "
+                        "are found in order of distance from it, i.e. of "
+                        "frequency; it must not be an eigenvalue.");
+      prm.declare_entry("Unstable tolerance",
+                        str(unstable_tolerance),
+                        Patterns::Double(0.,
+                                         Patterns::Double::max_double_value),
+                        "An eigenvalue is unstable when Re(lambda) exceeds "
+                        "this [1/s].");
+      prm.declare_entry("Reduced samples",
+                        std::to_string(reduced_samples),
+                        Patterns::Integer(1, 20),
+                        "Values of each swept structural parameter (pad "
+                        "modulus, interface or spring stiffness, support "
+                        "density) at which real modes of the symmetric system "
+                        "build the reduced basis: the ends of the sweep range "
+                        "and evenly spaced values between (log-spaced for a "
+                        "log sweep); with two structural parameters, every "
+                        "combination. One sample at the nominal point if "
+                        "neither swept parameter is structural.");
+      prm.declare_entry("Reduced band factor",
+                        str(reduced_band_factor),
+                        Patterns::Double(1., 10.),
+                        "Modes up to this factor times the maximum frequency "
+                        "enter the reduced basis. With the enrichment, 1.1 "
+                        "already gives 2e-6 in frequency and 7e-6 in growth "
+                        "rate against the full solver "
+                        "(benchmarks/speed_vs_error); 1.25 keeps a margin.");
+      prm.declare_entry("Reduced enrichment",
+                        reduced_enrichment ? "true" : "false",
+                        Patterns::Bool(),
+                        "Add K^-1 K_t Phi (static response to the friction "
+                        "forces of the basis modes) and K^-1 K_n Phi (to the "
+                        "interface forces; Rayleigh damping beta K_s is not "
+                        "proportional to K_s + K_n) to the basis.");
+      prm.declare_entry("Reduced enrichment depth",
+                        std::to_string(reduced_enrichment_depth),
+                        Patterns::Integer(1, 4),
+                        "Levels of friction enrichment: (K^-1 K_t)^l Phi for "
+                        "l = 1..depth (with the interface response K^-1 K_n "
+                        "Phi always added). 1 holds growth rates to 0.1 % up "
+                        "to mu = 2 in the hard-case tests; 2 gains little.");
+      prm.declare_entry("Check points",
+                        std::to_string(n_check_points),
+                        Patterns::Integer(0, 100),
+                        "Sweep points at which the reduced solver is checked "
+                        "against the full solver.");
+      prm.leave_subsection();
+    }
+
+    void
+    Eigensolver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Eigensolver");
+      f_min                    = prm.get_double("Minimum frequency");
+      f_max                    = prm.get_double("Maximum frequency");
+      method                   = prm.get("Method");
+      tolerance                = prm.get_double("Tolerance");
+      target_frequency         = prm.get_double("Target frequency");
+      unstable_tolerance       = prm.get_double("Unstable tolerance");
+      reduced_samples          = prm.get_integer("Reduced samples");
+      reduced_band_factor      = prm.get_double("Reduced band factor");
+      reduced_enrichment       = prm.get_bool("Reduced enrichment");
+      reduced_enrichment_depth = prm.get_integer("Reduced enrichment depth");
+      n_check_points           = prm.get_integer("Check points");
+      prm.leave_subsection();
+      check(f_min < f_max,
+            "Eigensolver/Minimum frequency (" + str(f_min) +
+              " Hz) must be below Eigensolver/Maximum frequency (" +
+              str(f_max) + " Hz)");
+    }
+  } // namespace parameters
+} // namespace squeal
