@@ -49,7 +49,7 @@ using test_tools::error_of;
 namespace
 {
   const double Lx = 0.04, Ly = 0.03, Lz = 0.02; // m
-  const double rho = 2500.;                       // kg/m^3
+  const double rho = 2500.;                     // kg/m^3
   // friction-material-like constants [Pa], stiffer in the pad's plane
   const double E1 = 12e9, E2 = 10e9, E3 = 4e9;
   const double nu12 = 0.25, nu13 = 0.2, nu23 = 0.18;
@@ -126,14 +126,10 @@ namespace
       cell->set_material_id(0); // colorize numbers the cells too
     io::NamedSets sets;
     sets.source = "the test's block";
-    sets.collect_from_ids(tria,
-                          {{0, "block"}},
-                          {{0, "x0"},
-                           {1, "x1"},
-                           {2, "y0"},
-                           {3, "y1"},
-                           {4, "z0"},
-                           {5, "z1"}});
+    sets.collect_from_ids(
+      tria,
+      {{0, "block"}},
+      {{0, "x0"}, {1, "x1"}, {2, "y0"}, {3, "y1"}, {4, "z0"}, {5, "z1"}});
     io::write_abaqus(tria, sets, file);
   }
 
@@ -170,7 +166,7 @@ namespace
     physics::StructuralModel        model(prm, MPI_COMM_WORLD);
     model.setup_and_assemble(quiet);
     const physics::MatrixParts parts = model.parts();
-    const auto c = parts.coefficients(prm.nominal_point());
+    const auto                 c     = parts.coefficients(prm.nominal_point());
     physics::PETScMatrix       K, M;
     parts.combine(c.structural, K);
     parts.combine(c.mass, M);
@@ -179,7 +175,7 @@ namespace
     band.f_max            = 45000.;
     band.target_frequency = 100.;
     band.initial_nev      = N + 4;
-    const auto modes = eigen::solve_undamped(M, K, band, 1., true, quiet);
+    const auto modes      = eigen::solve_undamped(M, K, band, 1., true, quiet);
     std::vector<double> f;
     for (const auto &m : modes)
       f.push_back(std::sqrt(std::real(m.omega2)) / (2 * M_PI));
@@ -228,9 +224,9 @@ main(int argc, char **argv)
   write_block("block.inp");
 
   // 1. material axes along the block's
-  const FullMatrix<double> C = voigt_stiffness();
+  const FullMatrix<double> C                 = voigt_stiffness();
   const auto               aligned_reference = closed_form(C, N);
-  const auto aligned = model_frequencies(orthotropic_keys(), N);
+  const auto               aligned = model_frequencies(orthotropic_keys(), N);
   compare("aligned axes", aligned, aligned_reference, 5e-4);
 
   // 2. material axis 1 along global y, 2 along -x: global (x, y, z) =

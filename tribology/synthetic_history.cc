@@ -30,7 +30,7 @@ namespace squeal
           "synthetic history: need n >= 2 nodes per side, >= 2 samples and a "
           "positive sampling rate");
       // 10 rpm at the pad radius, the rig's usual speed.
-      const double   sliding_speed = 10. * 2. * pi / 60. * pad_radius;
+      const double       sliding_speed = 10. * 2. * pi / 60. * pad_radius;
       io::ContactHistory h;
       h.sampling_rate = sampling_rate;
       h.time.resize(samples);

@@ -4,11 +4,11 @@
 /**
  * @file
  * The linear elastic laws of a scene's bodies as fourth-order stiffness
- * tensors C (sigma = C : eps, Pa): isotropic, transversely isotropic and orthotropic, given in a
- * material frame and rotated into the global one. Friction materials are
- * strongly anisotropic (pressed in one direction: stiffer in the plane of
- * the pad than through its thickness), which moves the pad modes and with
- * them the mode lock-ins of a brake.
+ * tensors C (sigma = C : eps, Pa): isotropic, transversely isotropic and
+ * orthotropic, given in a material frame and rotated into the global one.
+ * Friction materials are strongly anisotropic (pressed in one direction:
+ * stiffer in the plane of the pad than through its thickness), which moves the
+ * pad modes and with them the mode lock-ins of a brake.
  *
  * Orthotropic compliance in the material frame (Voigt order 11, 22, 33,
  * 23, 13, 12, engineering shear strains; e.g. R. M. Jones, Mechanics of
