@@ -1,5 +1,9 @@
 # Runs squeal on bad input and checks that it fails with a clear message.
-#   cmake -DSQUEAL=exe -DINPUT=file.prm -DEXPECT="text" [-DEXISTING=dir] -P check_error.cmake
+#   cmake -DSQUEAL=exe -DINPUT=file.prm -DEXPECT="text" [-DEXISTING=dir]
+#         [-DMPIEXEC=mpirun] -P check_error.cmake
+# With MPIEXEC, squeal runs on 2 ranks: rank 0 alone prints the error, the
+# launcher adds its own report, and the test's TIMEOUT catches a rank left
+# waiting.
 # With EXISTING, the output directory EXISTING is created first with a marker
 # file, the run must refuse to replace it, and the marker must survive.
 if(EXISTING)
@@ -9,8 +13,16 @@ if(EXISTING)
     "subsection Output\n  set Directory = ${EXISTING}\nend\n")
   set(INPUT "${EXISTING}.prm")
 endif()
-execute_process(COMMAND "${SQUEAL}" "${INPUT}"
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(MPIEXEC)
+  execute_process(COMMAND "${MPIEXEC}" -np 2 "${SQUEAL}" "${INPUT}"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  # keep squeal's own lines, not the launcher's report
+  string(REGEX MATCHALL "squeal: [^\n]*" own "${err}")
+  string(REPLACE ";" "\n" err "${own}")
+else()
+  execute_process(COMMAND "${SQUEAL}" "${INPUT}"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+endif()
 message("exit code ${rc}; stderr:\n${err}")
 if(rc EQUAL 0)
   message(FATAL_ERROR "squeal accepted bad input ${INPUT}")

@@ -65,36 +65,6 @@ namespace squeal
         return out;
       }
 
-      // Folds deal.II's multi-line exception text into one line.
-      inline std::string
-      one_line(const dealii::ExceptionBase &e)
-      {
-        std::ostringstream info;
-        e.print_info(info);
-        std::istringstream words(info.str());
-        std::string        folded, w;
-        while (words >> w)
-          folded += (folded.empty() ? "" : " ") + w;
-        return folded;
-      }
-
-      inline void
-      parse_file(ParameterHandler &prm, const std::string &filename)
-      {
-        if (!std::ifstream(filename))
-          throw std::runtime_error("cannot open parameter file '" + filename +
-                                   "'");
-        try
-          {
-            prm.parse_input(filename, "", false, true);
-          }
-        catch (const dealii::ExceptionBase &e)
-          {
-            throw std::runtime_error("in parameter file '" + filename +
-                                     "': " + one_line(e));
-          }
-      }
-
       inline std::string
       resolve(const std::string &base, const std::string &file)
       {

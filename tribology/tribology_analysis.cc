@@ -14,6 +14,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <squeal/io/output_directory.h>
+#include <squeal/parameters/parameters.h>
 #include <squeal/tribology/tribology_analysis.h>
 
 #include <opencv2/imgcodecs.hpp>
@@ -37,18 +38,14 @@ namespace squeal
   {
     namespace fs = std::filesystem;
     using dealii::Patterns::Anything;
-    using dealii::Patterns::Bool;
     using dealii::Patterns::Double;
-    using dealii::Patterns::Integer;
-    using dealii::Patterns::List;
     using dealii::Patterns::Selection;
 
     using internal::nan;
-    using internal::one_line;
     using internal::parse_doubles;
-    using internal::parse_file;
     using internal::parse_points;
     using internal::resolve;
+    using parameters::parse_file;
 
     std::string
     sidecar_of(const std::string &image, const std::string &folder)

@@ -3,8 +3,6 @@
 // into the work folder and published at the end. PNG plots are made from them
 // by scripts/plot_tribology.py.
 
-#include <deal.II/base/exceptions.h>
-#include <deal.II/base/timer.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/vector.h>
@@ -12,9 +10,6 @@
 
 #include <squeal/io/output_directory.h>
 #include <squeal/tribology/tribology_analysis.h>
-
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "text_input.h"
 
@@ -24,28 +19,13 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <limits>
-#include <random>
-#include <sstream>
 
 namespace squeal
 {
   namespace tribology
   {
     namespace fs = std::filesystem;
-    using dealii::Patterns::Anything;
-    using dealii::Patterns::Bool;
-    using dealii::Patterns::Double;
-    using dealii::Patterns::Integer;
-    using dealii::Patterns::List;
-    using dealii::Patterns::Selection;
-
     using internal::nan;
-    using internal::one_line;
-    using internal::parse_doubles;
-    using internal::parse_file;
-    using internal::parse_points;
-    using internal::resolve;
 
     void
     TribologyAnalysis::output_results()

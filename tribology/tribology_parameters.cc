@@ -3,29 +3,15 @@
 // one clear error.
 
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/timer.h>
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/tria.h>
-#include <deal.II/lac/vector.h>
-#include <deal.II/numerics/data_out.h>
 
-#include <squeal/io/output_directory.h>
+#include <squeal/parameters/parameters.h>
 #include <squeal/tribology/tribology_analysis.h>
-
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "text_input.h"
 
-#include <algorithm>
-#include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
-#include <iostream>
-#include <limits>
-#include <random>
-#include <sstream>
+#include <stdexcept>
+#include <string>
 
 namespace squeal
 {
@@ -38,13 +24,8 @@ namespace squeal
     using dealii::Patterns::Integer;
     using dealii::Patterns::List;
     using dealii::Patterns::Selection;
-
-    using internal::nan;
-    using internal::one_line;
     using internal::parse_doubles;
-    using internal::parse_file;
-    using internal::parse_points;
-    using internal::resolve;
+    using parameters::parse_file;
 
     // ---------------------------------------------------------------------
     // Parameters

@@ -209,7 +209,6 @@ namespace squeal
     void
     BrakingAnalysis::prepare_work_dir()
     {
-      const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
       if (resuming)
         {
           work_dir = prm.output.directory + ".partial";
@@ -222,16 +221,11 @@ namespace squeal
         }
       else
         {
-          work_dir =
-            io::partial_directory(prm.output.directory, prm.output.overwrite);
-          if (root)
-            {
-              io::fresh_directory(work_dir, "vtu");
-              fs::create_directories(fs::path(work_dir) / "checkpoint");
-              std::ofstream out(fs::path(work_dir) / "parameters.prm");
-              handler.print_parameters(out, ParameterHandler::PRM);
-            }
-          MPI_Barrier(comm);
+          work_dir = io::start_work_directory(prm.output.directory,
+                                              prm.output.overwrite,
+                                              handler,
+                                              comm,
+                                              {"vtu", "checkpoint"});
         }
     }
 

@@ -23,19 +23,14 @@ namespace squeal
     {
       ConditionalOStream pcout(std::cout,
                                Utilities::MPI::this_mpi_process(comm) == 0);
-      const bool         root = Utilities::MPI::this_mpi_process(comm) == 0;
-      const std::string  work =
-        io::partial_directory(prm.output.directory, prm.output.overwrite);
-      if (root)
-        {
-          io::fresh_directory(work);
-          std::ofstream out(fs::path(work) / "parameters.prm");
-          handler.print_parameters(out, ParameterHandler::PRM);
-        }
-      MPI_Barrier(comm);
-      const auto  points = prm.sweep_points();
-      const auto &first  = prm.sweep.first.parameter,
-                 &second = prm.sweep.second.parameter;
+      const bool         root   = Utilities::MPI::this_mpi_process(comm) == 0;
+      const std::string  work   = io::start_work_directory(prm.output.directory,
+                                                        prm.output.overwrite,
+                                                        handler,
+                                                        comm);
+      const auto         points = prm.sweep_points();
+      const auto        &first  = prm.sweep.first.parameter,
+                 &second        = prm.sweep.second.parameter;
       std::ostringstream table;
       table << std::setprecision(8) << "point,folder,"
             << parameters::column_name(first) << ','

@@ -48,15 +48,8 @@ namespace squeal
       TimerOutput::Scope t(timer, "setup and assembly");
       // Refuse to replace earlier results; write into a temporary directory
       // that output_results() renames at the end.
-      work_dir =
-        io::partial_directory(prm.output.directory, prm.output.overwrite);
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        {
-          io::fresh_directory(work_dir, "modes");
-          std::ofstream out(fs::path(work_dir) / "parameters.prm");
-          handler.print_parameters(out, ParameterHandler::PRM);
-        }
-      MPI_Barrier(comm);
+      work_dir = io::start_work_directory(
+        prm.output.directory, prm.output.overwrite, handler, comm, {"modes"});
       // the preload's nodal contact pressure at the pad nodes [Pa]
       std::vector<std::pair<dealii::Point<3>, double>> preload_pressure;
       if (prm.scene.analysis == "preloaded cea")

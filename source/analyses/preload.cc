@@ -44,15 +44,10 @@ namespace squeal
     PreloadAnalysis::setup_system()
     {
       TimerOutput::Scope t(timer, "setup and assembly");
-      work_dir =
-        io::partial_directory(prm.output.directory, prm.output.overwrite);
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        {
-          io::fresh_directory(work_dir);
-          std::ofstream out(fs::path(work_dir) / "parameters.prm");
-          handler.print_parameters(out, ParameterHandler::PRM);
-        }
-      MPI_Barrier(comm);
+      work_dir = io::start_work_directory(prm.output.directory,
+                                          prm.output.overwrite,
+                                          handler,
+                                          comm);
       model.setup_and_assemble(pcout);
 
       const Point<3> held =

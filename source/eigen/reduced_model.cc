@@ -455,36 +455,27 @@ namespace squeal
       std::vector<double> wr(n), wi(n), vr(n * n), work(1);
       int                 lwork = -1, info = 0, one = 1;
       double              dummy;
-      dgeev_("N",
-             "V",
-             &n,
-             A.data(),
-             &n,
-             wr.data(),
-             wi.data(),
-             &dummy,
-             &one,
-             vr.data(),
-             &n,
-             work.data(),
-             &lwork,
-             &info);
+      // LAPACK's two calls: the workspace size, then the eigenproblem
+      const auto geev = [&]() {
+        dgeev_("N",
+               "V",
+               &n,
+               A.data(),
+               &n,
+               wr.data(),
+               wi.data(),
+               &dummy,
+               &one,
+               vr.data(),
+               &n,
+               work.data(),
+               &lwork,
+               &info);
+      };
+      geev();
       lwork = static_cast<int>(work[0]);
       work.resize(lwork);
-      dgeev_("N",
-             "V",
-             &n,
-             A.data(),
-             &n,
-             wr.data(),
-             wi.data(),
-             &dummy,
-             &one,
-             vr.data(),
-             &n,
-             work.data(),
-             &lwork,
-             &info);
+      geev();
       if (info != 0)
         throw std::runtime_error("reduced model: LAPACK dgeev failed, info = " +
                                  std::to_string(info));

@@ -145,23 +145,21 @@ namespace squeal
     }
 
     void
-    AllParameters::read(ParameterHandler &prm, const std::string &filename)
+    parse_file(ParameterHandler &prm, const std::string &filename)
     {
-      std::ifstream in(filename);
-      if (!in)
+      if (!std::ifstream(filename))
         throw std::runtime_error("cannot open parameter file '" + filename +
                                  "'");
-      declare_parameters(prm);
       try
         {
           prm.parse_input(filename, "", false, true);
         }
       catch (const ExceptionBase &e)
         {
-          // deal.II's own text names the line and the entry; keep only it.
+          // deal.II's own text names the line and the entry; keep only it,
+          // folded onto one line.
           std::ostringstream info;
           e.print_info(info);
-          // One line: fold deal.II's indented layout.
           std::istringstream words(info.str());
           std::string        folded, w;
           while (words >> w)
@@ -169,6 +167,13 @@ namespace squeal
           throw std::runtime_error("in parameter file '" + filename +
                                    "': " + folded);
         }
+    }
+
+    void
+    AllParameters::read(ParameterHandler &prm, const std::string &filename)
+    {
+      declare_parameters(prm);
+      parse_file(prm, filename);
       try
         {
           parse_parameters(prm);

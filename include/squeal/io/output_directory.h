@@ -10,9 +10,14 @@
  * --overwrite).
  */
 
+#include <deal.II/base/parameter_handler.h>
+
+#include <mpi.h>
+
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace squeal
 {
@@ -42,6 +47,23 @@ namespace squeal
       std::filesystem::remove_all(partial);
       std::filesystem::create_directories(std::filesystem::path(partial) / sub);
     }
+
+    /**
+     * Starts a run's output: DIRECTORY.partial (partial_directory()) made
+     * fresh by rank 0 of @p comm with the sub-folders @p subs, and the
+     * resolved parameters of @p handler echoed into it as parameters.prm.
+     * Collective: a failure on rank 0 (a folder that cannot be created, a
+     * full disk) reaches every rank, so that none waits for it.
+     * @return the partial folder's path
+     * @throws std::runtime_error on every rank, naming the folder, if it
+     * exists without @p overwrite or cannot be written.
+     */
+    std::string
+    start_work_directory(const std::string              &directory,
+                         bool                            overwrite,
+                         const dealii::ParameterHandler &handler,
+                         MPI_Comm                        comm,
+                         const std::vector<std::string> &subs = {});
 
     /** Renames the finished @p partial to @p directory, replacing an earlier
      * one (partial_directory() has checked that this is allowed). */

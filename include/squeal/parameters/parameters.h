@@ -450,6 +450,17 @@ namespace squeal
       void
       set_nominal_point(const ScalarPoint &p);
     };
+
+    /**
+     * Parses the parameter file @p filename into @p prm, whose entries are
+     * declared (INCLUDE directives allowed).
+     * @throws std::runtime_error "cannot open parameter file 'F'", or "in
+     * parameter file 'F': " and deal.II's message on one line (it names the
+     * line and the entry) on a malformed line, an unknown entry or a value
+     * outside its pattern.
+     */
+    void
+    parse_file(ParameterHandler &prm, const std::string &filename);
   } // namespace parameters
 } // namespace squeal
 
