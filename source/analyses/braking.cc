@@ -129,6 +129,7 @@ namespace squeal
         lumped_mass(model.dof_handler, model.mapping, [&](const auto &cell) {
           return model.scene->density(cell->material_id(), nominal);
         });
+      physics::add_lumped_masses(model, mass);
 
       // every pair: the disc turns under all the pads at one angular
       // velocity (the first pair's axis), the same sliding direction

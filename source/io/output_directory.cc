@@ -30,8 +30,7 @@ namespace squeal
                   std::filesystem::path(partial) / sub);
               const std::string file = partial + "/parameters.prm";
               std::ofstream     out(file);
-              handler.print_parameters(out,
-                                       dealii::ParameterHandler::PRM);
+              handler.print_parameters(out, dealii::ParameterHandler::PRM);
               out.close();
               if (!out)
                 throw std::runtime_error("cannot write '" + file + "'");

@@ -101,6 +101,14 @@ namespace squeal
                         probes,
                         Patterns::Anything(),
                         "name: point=x y z [m]: named points.");
+      prm.declare_entry(
+        "Masses",
+        masses,
+        Patterns::Anything(),
+        "name: mass=m [kg], point=x y z [m] | set=<face set>: lumped masses "
+        "(an accelerometer, a weight): at the node nearest the point (all "
+        "three directions), or spread evenly over the face set's area "
+        "(a consistent surface mass). They enter every analysis' mass.");
       prm.leave_subsection();
     }
 
@@ -117,6 +125,7 @@ namespace squeal
       loads         = prm.get("Loads");
       springs       = prm.get("Springs");
       probes        = prm.get("Probes");
+      masses        = prm.get("Masses");
       prm.leave_subsection();
     }
 

@@ -879,6 +879,24 @@ namespace squeal
                          item.unit("direction", "")});
       for (const Item &item : parse_list("Probes", mf.probes, {"point"}))
         probes.push_back({item.name, Point<3>(item.vector("point"))});
+      for (const Item &item :
+           parse_list("Masses", mf.masses, {"mass", "point", "set"}))
+        {
+          LumpedMass m;
+          m.name = item.name;
+          m.mass = item.number("mass");
+          if (!(m.mass > 0.))
+            throw std::runtime_error(item.where() + ": need mass > 0 [kg]");
+          if (item.has("point") == item.has("set"))
+            throw std::runtime_error(item.where() +
+                                     ": give either point= or set=");
+          m.on_faces = item.has("set");
+          if (m.on_faces)
+            m.faces = face_id(item, item.text("set"));
+          else
+            m.point = Point<3>(item.vector("point"));
+          masses.push_back(m);
+        }
 
       // Springs: each station on a boundary face of its body.
       for (const Item &item :

@@ -40,6 +40,7 @@ namespace squeal
       std::string loads;
       std::string springs;
       std::string probes;
+      std::string masses;
       void
       declare_parameters(ParameterHandler &prm) const;
       void

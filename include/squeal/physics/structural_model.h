@@ -263,11 +263,28 @@ namespace squeal
 
       /// Parameter values of the assembled parts (see MatrixParts).
       parameters::ScalarPoint reference;
-      double                  constrained_diagonal = 1.; ///< d above [N/m]
+
+      /** A point mass of the scene at its node (see setup_and_assemble()). */
+      struct PointMass
+      {
+        std::array<dealii::types::global_dof_index, 3> dofs;      ///< x, y, z
+        double                                         mass = 0.; ///< kg
+        dealii::types::material_id body = 0; ///< the body it sits on
+      };
+      /// the scene's point masses, each at the unconstrained node nearest
+      /// its point (the lowest DoF index among equally near ones); the same
+      /// on every rank
+      std::vector<PointMass> point_masses;
+      double                 constrained_diagonal = 1.; ///< d above [N/m]
 
     private:
       void
       setup_dofs_and_assemble(dealii::ConditionalOStream &pcout);
+      /// the scene's lumped masses into the mass part `mass` (coefficient
+      /// 1): a face set's as a consistent surface mass of density m / area,
+      /// a point's on the diagonal of its node's three DoFs
+      void
+      add_masses(dealii::ConditionalOStream &pcout);
       void
       assemble_elasticity();
       /// adds one spring set of the scene to stiffness_springs
@@ -333,6 +350,23 @@ namespace squeal
     std::vector<bool>
     dofs_on_boundary(const StructuralModel     &model,
                      dealii::types::boundary_id id);
+
+    /**
+     * The area [m^2] of the boundary faces with id @p id (mapped geometry;
+     * the same on every rank). Collective.
+     */
+    double
+    boundary_area(const StructuralModel &model, dealii::types::boundary_id id);
+
+    /**
+     * Adds the scene's lumped masses to the lumped (diagonal) mass
+     * @p lumped of the explicit dynamics (n_dofs entries, every rank, kg): a
+     * face set's surface mass by the Gauss-Lobatto rule on the face nodes,
+     * a point mass on its node's three DoFs. Collective.
+     */
+    void
+    add_lumped_masses(const StructuralModel  &model,
+                      dealii::Vector<double> &lumped);
 
     /** The DoFs the scene's holds fix (see held_dofs()). */
     struct HeldDofs

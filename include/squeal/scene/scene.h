@@ -191,6 +191,19 @@ namespace squeal
       double tolerance = 1e-9; ///< m, distance of a face from a station's plane
     };
 
+    /**
+     * A lumped mass: at the node nearest a point (an accelerometer), or
+     * spread evenly over a face set (a weight bonded on a face).
+     */
+    struct LumpedMass
+    {
+      std::string                name;          ///< as in logs and errors
+      double                     mass     = 0.; ///< kg
+      bool                       on_faces = false;
+      dealii::types::boundary_id faces    = 0; ///< on_faces: the face set
+      dealii::Point<3>           point;        ///< else: where it sits [m]
+    };
+
     /** A named point where results are recorded. */
     struct Probe
     {
@@ -229,6 +242,7 @@ namespace squeal
       std::vector<Load>        loads;         ///< the analyses' normal force
       std::vector<SpringSet>   springs;       ///< springs to ground
       std::vector<Probe>       probes;        ///< named points
+      std::vector<LumpedMass>  masses;        ///< added masses
 
       /**
        * The body with material id @p id.
