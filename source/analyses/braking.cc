@@ -212,7 +212,7 @@ namespace squeal
     {
       if (resuming)
         {
-          work_dir = prm.output.directory + ".partial";
+          work_dir = io::normalised(prm.output.directory) + ".partial";
           if (!fs::is_regular_file(fs::path(work_dir) / "checkpoint" /
                                    "latest"))
             throw std::runtime_error(

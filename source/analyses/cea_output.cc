@@ -23,7 +23,7 @@ namespace squeal
     using namespace dealii;
 
 
-    void
+    std::string
     ComplexEigenvalueAnalysis::write_mode(const physics::PETScVector &re,
                                           const physics::PETScVector &im,
                                           const std::string &name) const
@@ -60,7 +60,7 @@ namespace squeal
       data_out.build_patches(model->mapping,
                              model->fe.degree,
                              DataOut<3>::curved_inner_cells);
-      data_out.write_vtu_with_pvtu_record(
+      return data_out.write_vtu_with_pvtu_record(
         work_dir + "/modes/", name, 0, comm, 0, 0);
     }
 
@@ -204,8 +204,9 @@ namespace squeal
           name << "mode_p" << p << "_m" << k << "_" << std::fixed
                << std::setprecision(1) << pt.lambda[k].imag() / (2 * M_PI)
                << "Hz_re" << std::setprecision(3) << pt.lambda[k].real();
-          write_mode(re, im, name.str());
-          records.emplace_back(records.size(), "modes/" + name.str() + ".pvtu");
+          // the record names the file written (deal.II appends the counter)
+          records.emplace_back(records.size(),
+                               "modes/" + write_mode(re, im, name.str()));
         }
       write_error_indicator();
       if (root)

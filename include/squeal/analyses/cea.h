@@ -86,7 +86,9 @@ namespace squeal
       classify();
       void
       output_results() const;
-      void
+      /// writes the mode re + i im as modes/NAME_0.pvtu (+ .vtu pieces);
+      /// returns the .pvtu's name relative to modes/
+      std::string
       write_mode(const physics::PETScVector &re,
                  const physics::PETScVector &im,
                  const std::string          &name) const;

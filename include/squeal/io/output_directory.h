@@ -14,6 +14,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -24,20 +25,46 @@ namespace squeal
   namespace io
   {
     /**
+     * @p directory normalised: `a/./b/../c/` is `a/c` (no trailing
+     * separator).
+     */
+    inline std::string
+    normalised(const std::string &directory)
+    {
+      std::filesystem::path p =
+        std::filesystem::path(directory).lexically_normal();
+      if (p.has_parent_path() && p.filename().empty())
+        p = p.parent_path();
+      return p.string();
+    }
+
+    /**
      * The temporary folder DIRECTORY.partial of a run writing into
-     * @p directory (nothing is created).
-     * @throws std::runtime_error naming the folder if it exists and
-     * @p overwrite is false.
+     * @p directory (normalised; nothing is created).
+     * @throws std::runtime_error naming the folder if it is the working
+     * directory or one of its ancestors (replacing it would delete the
+     * run's own input), or if it exists and @p overwrite is false.
      */
     inline std::string
     partial_directory(const std::string &directory, const bool overwrite)
     {
-      if (std::filesystem::exists(directory) && !overwrite)
+      const std::string target = normalised(directory);
+      namespace fs             = std::filesystem;
+      const fs::path full      = fs::weakly_canonical(fs::absolute(target));
+      const fs::path cwd       = fs::weakly_canonical(fs::current_path());
+      const auto     mismatch =
+        std::mismatch(full.begin(), full.end(), cwd.begin(), cwd.end());
+      if (target.empty() || mismatch.first == full.end())
+        throw std::runtime_error(
+          "output directory '" + directory +
+          "' is the working directory or contains it; a run replaces its "
+          "output folder, so give it a folder of its own");
+      if (fs::exists(target) && !overwrite)
         throw std::runtime_error(
           "output directory '" + directory +
           "' exists; set Output/Overwrite = true or pass --overwrite to "
           "replace it");
-      return directory + ".partial";
+      return target + ".partial";
     }
 
     /** Empties (or creates) @p partial and its sub-folder @p sub (if any). */
@@ -70,8 +97,8 @@ namespace squeal
     inline void
     publish_directory(const std::string &partial, const std::string &directory)
     {
-      std::filesystem::remove_all(directory);
-      std::filesystem::rename(partial, directory);
+      std::filesystem::remove_all(normalised(directory));
+      std::filesystem::rename(partial, normalised(directory));
     }
   } // namespace io
 } // namespace squeal

@@ -1,0 +1,124 @@
+#!/usr/bin/python3
+"""The output-folder contract on paths a user types (issue: data loss).
+
+usage: check_output_folder.py SQUEAL WORKDIR
+
+A one-point CEA of the coarse clamped disc (a few seconds) is run with:
+- Output/Directory = `out/` (trailing slash): the result is published as
+  `out`, nothing is left inside it or beside it as `.partial`; a second run
+  without overwriting is refused and leaves `out` byte for byte as it was;
+  with --overwrite it replaces it;
+- Output/Directory = `.` and `sub/..` with Overwrite = true: refused with one
+  error naming the working directory; the working directory keeps every
+  file (its input included);
+- Output/Directory = the working directory's parent: refused the same way.
+Exits non-zero on the first failure.
+"""
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+
+squeal, work = sys.argv[1:3]
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+os.chdir(work)
+
+DISC = """subsection Scene
+  set Type = disc
+end
+subsection Mesh
+  set Finite element degree = 1
+  set Disc cells circumference = 16
+  set Disc cells radial = 2
+  set Disc cells thickness = 1
+end
+subsection Eigensolver
+  set Maximum frequency = 3000
+end
+subsection Sweep
+  set First values = 25e9
+  set Second values = 0.1
+end
+subsection Output
+  set Directory = {directory}
+  set Overwrite = {overwrite}
+end
+"""
+
+
+def fail(msg):
+    print("FAILED:", msg)
+    sys.exit(1)
+
+
+def write(directory, overwrite="false"):
+    with open("case.prm", "w") as f:
+        f.write(DISC.format(directory=directory, overwrite=overwrite))
+
+
+def execute(extra=()):
+    return subprocess.run([squeal, *extra, "case.prm"], capture_output=True,
+                          text=True)
+
+
+def run(directory, overwrite="false", extra=()):
+    write(directory, overwrite)
+    return execute(extra)
+
+
+def digest(folder):
+    h = hashlib.sha256()
+    for root, dirs, files in sorted(os.walk(folder)):
+        dirs.sort()
+        for name in sorted(files):
+            path = os.path.join(root, name)
+            h.update(path.encode())
+            with open(path, "rb") as f:
+                h.update(f.read())
+    return h.hexdigest()
+
+
+r = run("out/")
+if r.returncode != 0:
+    fail(f"out/ exited {r.returncode}:\n{r.stderr}")
+if not os.path.isfile("out/eigenvalues.csv"):
+    fail("out/ was not published as out")
+if os.path.exists("out.partial") or os.path.exists("out/out.partial"):
+    fail("a .partial folder was left behind")
+print("trailing slash: published as out: ok")
+
+before = digest("out")
+r = run("out/")
+if r.returncode == 0 or "exists" not in r.stderr:
+    fail(f"a second run into out/ was not refused:\n{r.stderr}")
+if digest("out") != before:
+    fail("the refused run changed out")
+print("trailing slash: a second run is refused, out unchanged: ok")
+
+r = run("out/", extra=["--overwrite"])
+if r.returncode != 0 or not os.path.isfile("out/eigenvalues.csv"):
+    fail(f"--overwrite into out/ failed:\n{r.stderr}")
+print("trailing slash: --overwrite replaces out: ok")
+
+# in work/outer/inner, so that a regression replacing ".." touches only
+# work/outer
+os.makedirs("outer/inner")
+os.chdir("outer/inner")
+with open("marker.txt", "w") as f:
+    f.write("keep me\n")
+for directory in [".", "sub/..", ".."]:
+    write(directory, overwrite="true")
+    here = digest("..")
+    r = execute()
+    if r.returncode == 0:
+        fail(f"Output/Directory = {directory} was accepted")
+    if "working directory or contains it" not in r.stderr:
+        fail(f"Output/Directory = {directory}: unclear error:\n{r.stderr}")
+    if r.stderr.count("\n") > 2:
+        fail(f"Output/Directory = {directory}: not one error:\n{r.stderr}")
+    if digest("..") != here or not os.path.isfile("case.prm"):
+        fail(f"Output/Directory = {directory} changed the working directory")
+    print(f"Output/Directory = {directory} with Overwrite: refused, nothing "
+          "touched: ok")
