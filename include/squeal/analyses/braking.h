@@ -50,21 +50,26 @@ namespace squeal
     /** What a braking run found (after run()). */
     struct BrakingSummary
     {
-      unsigned int n_dofs    = 0;
-      double       time_step = 0., critical_time_step = 0.; ///< s
-      /// wall time of one stiffness product [s]: sparse, matrix-free
-      double               sparse_product = 0., matrix_free_product = 0.;
-      unsigned int         n_steps            = 0;
-      double               wall_time          = 0.; ///< s, the time loop
-      double               dominant_frequency = 0.; ///< Hz, probe acceleration
+      unsigned int n_dofs             = 0;  ///< of the structure
+      double       time_step          = 0.; ///< s, of the run
+      double       critical_time_step = 0.; ///< s, the stability limit
+      /// wall time of one stiffness product, assembled matrix [s]
+      double sparse_product = 0.;
+      /// wall time of one stiffness product, matrix-free [s]
+      double               matrix_free_product = 0.;
+      unsigned int         n_steps             = 0;  ///< time steps taken
+      double               wall_time           = 0.; ///< s, the time loop
+      double               dominant_frequency  = 0.; ///< Hz, probe acceleration
       transient::GrowthFit growth; ///< envelope of the probe velocity
       /// the probe velocity's amplitude at the dominant frequency alone
       /// (transient::fit_modal_growth(): one mode where several grow)
       transient::GrowthFit modal_growth;
       bool separated = false; ///< a pad node separated after the ramp
-      /// leading-edge nodes, over the spectrum window: min and max pressure
-      /// over the nominal mean pressure (normal force / pad area)
-      double leading_min_over_mean = 0., leading_max_over_mean = 0.;
+      /// leading-edge nodes, over the spectrum window: min pressure over
+      /// the nominal mean pressure (normal force / slave face area)
+      double leading_min_over_mean = 0.;
+      /// the same, max pressure over the mean
+      double leading_max_over_mean = 0.;
       /// unstable: limit cycle | still growing at End time | growing slowly
       /// (the fitted envelope at least doubled); stable: vibration decays |
       /// no growth

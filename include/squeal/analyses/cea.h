@@ -32,13 +32,13 @@ namespace squeal
     /** One eigenvalue of one sweep point, as written to eigenvalues.csv. */
     struct ModeRecord
     {
-      unsigned int            point;
+      unsigned int            point;  ///< sweep point index
       parameters::ScalarPoint values; ///< the sweep point's parameters
       unsigned int            mode;   ///< index within the point, by frequency
       std::complex<double>    lambda; ///< 1/s
       double                  residual; ///< relative, on the full model
-      bool                    unstable;
-      int                     track;
+      bool                    unstable; ///< Re lambda above the tolerance
+      int                     track;    ///< mode track over the sweep
     };
 
     /** The analysis; run() does everything. */
@@ -47,7 +47,8 @@ namespace squeal
     public:
       /**
        * @param prm the parsed parameters; @param handler the handler they
-       * were parsed from (echoed into the output directory).
+       * were parsed from (echoed into the output directory); @param comm
+       * the ranks that share the run.
        */
       ComplexEigenvalueAnalysis(const parameters::AllParameters &prm,
                                 const dealii::ParameterHandler  &handler,

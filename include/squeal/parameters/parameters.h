@@ -33,16 +33,19 @@ namespace squeal
     {
       std::string file;             ///< `.msh` or `.inp`, absolute after read()
       double      length_unit = 1.; ///< m per mesh unit
-      std::string bodies;
-      std::string contact_pairs;
-      std::string holds;
-      std::string point_holds;
-      std::string loads;
-      std::string springs;
-      std::string probes;
-      std::string masses;
+      std::string bodies;           ///< the Bodies list (see its help)
+      std::string contact_pairs;    ///< the Contact pairs list
+      std::string holds;            ///< the Holds list
+      std::string point_holds;      ///< the Point holds list
+      std::string loads;            ///< the Loads list
+      std::string springs;          ///< the Springs list
+      std::string probes;           ///< the Probes list
+      std::string masses;           ///< the Masses list
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -55,15 +58,18 @@ namespace squeal
      */
     struct Scene
     {
-      std::string type = "tribobrake";
+      std::string type = "tribobrake"; ///< tribobrake | disc | mesh file
       /// `cea`: complex eigenvalue analysis (sweep); `preload`: the static
       /// frictional contact of the pad on the disc under the normal load;
       /// `preloaded cea`: the preload, then the CEA on its contact area;
       /// `braking`: the transient braking simulation
       std::string   analysis = "cea";
-      MeshFileScene mesh_file;
+      MeshFileScene mesh_file; ///< subsection Mesh file
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -77,8 +83,11 @@ namespace squeal
       double pad_size          = 0.01; ///< m, edge of the cubic pad
       double pad_radius        = 0.10; ///< m, radius of the pad face centre
       double support_length    = 0.10; ///< m, along the disc axis z
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -86,15 +95,20 @@ namespace squeal
     /** Mesh density per body and FE degree. */
     struct Mesh
     {
-      unsigned int fe_degree                = 2;
-      unsigned int disc_cells_circumference = 64;
-      unsigned int disc_cells_radial        = 10;
-      unsigned int disc_cells_thickness     = 2;
-      unsigned int pad_cells_side      = 4; ///< across the pad face (x and y)
-      unsigned int pad_cells_thickness = 2;
+      unsigned int fe_degree = 2; ///< FE_Q degree of the displacement
+      unsigned int disc_cells_circumference =
+        64; ///< TriboBrake disc: cells around
+      unsigned int disc_cells_radial =
+        10; ///< TriboBrake disc: cells along the radius
+      unsigned int disc_cells_thickness =
+        2; ///< TriboBrake disc: cells through the thickness
+      unsigned int pad_cells_side = 4; ///< across the pad face (x and y)
+      unsigned int pad_cells_thickness =
+        2; ///< TriboBrake pad: cells through the thickness
       unsigned int support_cells_length =
         10; ///< along z; 10 divides 11 spring stations
-      unsigned int disc_refinements_under_pad = 0;
+      unsigned int disc_refinements_under_pad =
+        0; ///< TriboBrake disc: refinements under the pad
       /// preloaded CEA: refinement cycles of the contact region driven by
       /// the preload's contact pressure variation (0: none)
       unsigned int contact_refinements = 0;
@@ -121,8 +135,11 @@ namespace squeal
       /// same mesh instead where that is predicted to reduce the error
       /// faster per DoF (up to degree 3)
       bool degree_adaptivity = false;
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -138,14 +155,17 @@ namespace squeal
     /** Materials per body (thesis § 3.2.2) and the model-updating switch. */
     struct Materials
     {
-      Material disc;
-      Material pad{25e9, 0.3, 2500.};
-      Material support{210e9, 0.3, 7800.};
+      Material disc;                       ///< the disc (TriboBrake)
+      Material pad{25e9, 0.3, 2500.};      ///< the pad (TriboBrake)
+      Material support{210e9, 0.3, 7800.}; ///< the support (TriboBrake)
       /// `updated`: the calibrated support density; `steel`: 7800 kg/m^3.
       std::string support_density_model = "updated";
       double support_updated_density    = 76500.; ///< kg/m^3, calibrated value
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -163,13 +183,17 @@ namespace squeal
      */
     struct Springs
     {
-      unsigned int n_rows_per_side = 2;
-      unsigned int n_per_row       = 11;
-      double       stiffness       = 8.422e6; ///< N/m per spring
+      unsigned int n_rows_per_side =
+        2; ///< TriboBrake springs: rows on each side of the support
+      unsigned int n_per_row = 11;      ///< TriboBrake springs: springs per row
+      double       stiffness = 8.422e6; ///< N/m per spring
       /// m; 0: the node nearest to each station (point springs)
       double attachment_radius = 1.25e-3;
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -179,8 +203,11 @@ namespace squeal
     {
       double alpha = 0.02; ///< 1/s
       double beta  = 1e-7; ///< s
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -191,14 +218,18 @@ namespace squeal
       double      normal_stiffness     = 2.5895e12;  ///< N/m^3 per unit area
       double      friction_coefficient = 0.3;        ///< when not swept [-]
       std::string sliding_direction    = "rotation"; ///< `rotation` or "tx, ty"
-      std::string rotation_sense       = "counterclockwise";
-      std::string quadrature           = "mortar"; ///< `mortar` or `nodal`
+      std::string rotation_sense =
+        "counterclockwise"; ///< sense of the disc's rotation about its axis: counterclockwise | clockwise
+      std::string quadrature = "mortar"; ///< `mortar` or `nodal`
       /// Unit sliding direction at the pad (z component 0), resolved from the
       /// above for a pad on the +x axis.
       dealii::Tensor<1, 3>
       sliding_tangent() const;
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -209,17 +240,22 @@ namespace squeal
       double      f_min              = 900.;      ///< Hz
       double      f_max              = 20000.;    ///< Hz
       std::string method             = "reduced"; ///< `full` or `reduced`
-      double      tolerance          = 1e-10;
-      double      target_frequency   = 100.; ///< Hz, real shift -2 pi f
-      double      unstable_tolerance = 1e-3; ///< 1/s on Re(lambda)
+      double      tolerance          = 1e-10;     ///< SLEPc relative tolerance
+      double      target_frequency   = 100.;      ///< Hz, real shift -2 pi f
+      double      unstable_tolerance = 1e-3;      ///< 1/s on Re(lambda)
       /// Sample values per swept structural parameter for the reduced basis.
       unsigned int reduced_samples = 3;
       double reduced_band_factor   = 1.25; ///< see benchmarks/speed_vs_error
-      bool   reduced_enrichment    = true;
+      bool   reduced_enrichment =
+        true; ///< enrich the reduced basis at the sweep points
       unsigned int reduced_enrichment_depth = 1; ///< levels (K^-1 K_t)^l Phi
-      unsigned int n_check_points           = 2;
+      unsigned int n_check_points =
+        2; ///< points where the reduced solver is checked against the full one
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -315,13 +351,20 @@ namespace squeal
      */
     struct Sweep
     {
-      SweepAxis first{"pad modulus", "log 1e9 1e11 41", true, {}};
+      SweepAxis first{"pad modulus",
+                      "log 1e9 1e11 41",
+                      true,
+                      {}}; ///< the tracked axis
+      /// one tracked sweep per value of this axis
       SweepAxis second{"friction coefficient",
                        "0.01, 0.1, 0.2, 0.3, 0.5, 0.7",
                        false,
                        {}};
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -329,11 +372,15 @@ namespace squeal
     /** Where results go. */
     struct Output
     {
-      std::string directory   = "output/run";
-      bool        overwrite   = false;
+      std::string directory = "output/run"; ///< the output folder (normalised,
+                                            ///< never the working directory)
+      bool        overwrite   = false; ///< replace an existing output folder
       std::string mode_output = "unstable and first"; ///< or `none`, `all`
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -356,8 +403,11 @@ namespace squeal
       /// load step once the relative tangential displacement since the
       /// last one exceeds this fraction of the shortest pad face edge
       double segmentation_refresh = 0.1;
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -385,17 +435,21 @@ namespace squeal
       double       animation_period  = 2.9e-4; ///< s, length of the window
       unsigned int animation_frames  = 20;     ///< snapshots over one period
       double       spectrum_start = -1.; ///< s; < 0: the second half of the run
-      double       contact_tolerance    = 1e-10; ///< projected Gauss-Seidel
-      unsigned int contact_iterations   = 2000;
-      double       initial_perturbation = 0.; ///< m/s, see help
+      double       contact_tolerance = 1e-10; ///< projected Gauss-Seidel
+      unsigned int contact_iterations =
+        2000; ///< projected Gauss-Seidel iterations per contact step, at most
+      double initial_perturbation = 0.; ///< m/s, see help
       /// `matrix-free` (deal.II MatrixFree) or `sparse` (assembled matrix)
       std::string stiffness_product = "matrix-free";
       /// steps between checkpoints (squeal --resume); 0: none
       unsigned int checkpoint_interval = 20000;
       /// run one braking simulation per Sweep point (stability table)
       bool grid = false;
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
       void
       declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
       void
       parse_parameters(ParameterHandler &prm);
     };
@@ -403,18 +457,18 @@ namespace squeal
     /** All parameters of a run. */
     struct AllParameters
     {
-      Scene       scene;
-      Geometry    geometry;
-      Mesh        mesh;
-      Materials   materials;
-      Springs     springs;
-      Damping     damping;
-      Interface   interface;
-      Eigensolver eigensolver;
-      Sweep       sweep;
-      Preload     preload;
-      Transient   transient;
-      Output      output;
+      Scene       scene;       ///< subsection Scene
+      Geometry    geometry;    ///< subsection Geometry
+      Mesh        mesh;        ///< subsection Mesh
+      Materials   materials;   ///< subsection Materials
+      Springs     springs;     ///< subsection Springs
+      Damping     damping;     ///< subsection Damping
+      Interface   interface;   ///< subsection Interface
+      Eigensolver eigensolver; ///< subsection Eigensolver
+      Sweep       sweep;       ///< subsection Sweep
+      Preload     preload;     ///< subsection Preload
+      Transient   transient;   ///< subsection Transient
+      Output      output;      ///< subsection Output
 
       /** Declares every subsection with defaults, ranges and help. */
       void

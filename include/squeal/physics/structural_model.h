@@ -39,7 +39,9 @@ namespace squeal
 {
   namespace physics
   {
+    /// the distributed sparse matrix of every matrix part
     using PETScMatrix = dealii::PETScWrappers::MPI::SparseMatrix;
+    /// the distributed vector of DoF values and mode shapes
     using PETScVector = dealii::PETScWrappers::MPI::Vector;
 
     /** The Lame constants (lambda, mu) [Pa] of Young's modulus @p E [Pa]
@@ -96,9 +98,14 @@ namespace squeal
       /** The coefficients of M, K_s, K and C at one point. */
       struct Combination
       {
-        Coefficients mass, structural, stiffness, symmetric_stiffness, damping;
+        Coefficients mass;                ///< M(p) [kg]
+        Coefficients structural;          ///< K_s(p): bodies and springs [N/m]
+        Coefficients stiffness;           ///< K(p): K_s + K_n + mu K_t [N/m]
+        Coefficients symmetric_stiffness; ///< K_s + K_n (no friction) [N/m]
+        Coefficients damping;             ///< C(p) = alpha M + beta K_s [N s/m]
       };
 
+      /// the assembled parts, in the order of Part
       std::array<const PETScMatrix *, n_parts> matrix;
       /// The parameter values at which the parts were assembled; only
       /// E_pad, support_density, spring_stiffness, interface_stiffness are
@@ -212,8 +219,8 @@ namespace squeal
         return dof_handler.n_dofs();
       }
 
-      const parameters::AllParameters &prm;
-      MPI_Comm                         comm;
+      const parameters::AllParameters &prm;  ///< the run's parameters
+      MPI_Comm                         comm; ///< the ranks sharing the model
 
       /// The scene the model was built from (scene::make_scene() of the
       /// parameters at setup_and_assemble(); null before): bodies, contact
@@ -231,13 +238,20 @@ namespace squeal
        */
       std::function<double(const dealii::Point<3> &)> interface_mask;
 
+      /// the scene's mesh, whole on every rank (refined by the CEA)
       dealii::parallel::shared::Triangulation<3> triangulation;
-      const dealii::FESystem<3>                  fe;
-      const dealii::MappingQ<3>                  mapping;
-      dealii::DoFHandler<3>                      dof_handler;
-      dealii::AffineConstraints<double>          constraints;
-      dealii::IndexSet                           locally_owned_dofs;
-      dealii::IndexSet                           locally_relevant_dofs;
+      /// FE_Q^3 of Mesh/Finite element degree
+      const dealii::FESystem<3> fe;
+      /// of the same degree: curved faces follow the scene's manifolds
+      const dealii::MappingQ<3> mapping;
+      /// the displacement DoFs (3 per node)
+      dealii::DoFHandler<3> dof_handler;
+      /// hanging nodes and the scene's holds (homogeneous)
+      dealii::AffineConstraints<double> constraints;
+      /// the DoFs this rank owns
+      dealii::IndexSet locally_owned_dofs;
+      /// the DoFs this rank's cells touch
+      dealii::IndexSet locally_relevant_dofs;
 
       PETScMatrix mass;               ///< disc and pad (M_fixed) [kg]
       PETScMatrix mass_support;       ///< support at reference density [kg]

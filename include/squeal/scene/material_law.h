@@ -29,9 +29,15 @@ namespace squeal
      * 1, 2, 3). Moduli in Pa, Poisson ratios dimensionless. */
     struct OrthotropicConstants
     {
-      double E1, E2, E3;       ///< Pa
-      double nu12, nu13, nu23; ///< -
-      double G12, G13, G23;    ///< Pa
+      double E1;   ///< Young's modulus along axis 1 [Pa]
+      double E2;   ///< along axis 2 [Pa]
+      double E3;   ///< along axis 3 [Pa]
+      double nu12; ///< contraction along 2 under stress along 1 [-]
+      double nu13; ///< contraction along 3 under stress along 1 [-]
+      double nu23; ///< contraction along 3 under stress along 2 [-]
+      double G12;  ///< shear modulus in the 1-2 plane [Pa]
+      double G13;  ///< shear modulus in the 1-3 plane [Pa]
+      double G23;  ///< shear modulus in the 2-3 plane [Pa]
     };
 
     /**

@@ -42,10 +42,11 @@ namespace squeal
      */
     struct ElasticLaw
     {
+      /// the kind of material frame
       enum class Frame
       {
-        cartesian,
-        cylindrical
+        cartesian,  ///< fixed axes
+        cylindrical ///< radial, tangential, axial about an axis
       };
       /// false: the body is isotropic (Body::material)
       bool anisotropic = false;
@@ -53,12 +54,13 @@ namespace squeal
       /// reference modulus Body::material.youngs_modulus (the sweep of a
       /// modulus_swept body scales it by E(p) / that modulus)
       dealii::SymmetricTensor<4, 3> C;
-      Frame                         frame = Frame::cartesian;
+      Frame                         frame = Frame::cartesian; ///< see Frame
       /// cartesian: the columns are the material axes 1, 2, 3 in global
       /// coordinates (orthonormal)
       dealii::Tensor<2, 3> axes;
-      /// cylindrical: a point of the axis [m] and its unit direction
-      dealii::Point<3>     origin;
+      /// cylindrical: a point of the axis [m]
+      dealii::Point<3> origin;
+      /// cylindrical: the axis' unit direction
       dealii::Tensor<1, 3> axis;
 
       /**
@@ -197,11 +199,11 @@ namespace squeal
      */
     struct LumpedMass
     {
-      std::string                name;          ///< as in logs and errors
-      double                     mass     = 0.; ///< kg
-      bool                       on_faces = false;
-      dealii::types::boundary_id faces    = 0; ///< on_faces: the face set
-      dealii::Point<3>           point;        ///< else: where it sits [m]
+      std::string name;             ///< as in logs and errors
+      double      mass     = 0.;    ///< kg
+      bool        on_faces = false; ///< spread over a face set, else at a point
+      dealii::types::boundary_id faces = 0; ///< on_faces: the face set
+      dealii::Point<3>           point;     ///< else: where it sits [m]
     };
 
     /** A named point where results are recorded. */

@@ -32,6 +32,11 @@ namespace squeal
      * @param samples number of samples; @param sampling_rate Hz
      * @param frequency squeal frequency f [Hz]
      * @param p_mean [Pa]; @param mu friction coefficient
+     * @param pad_size edge of the square pad face [m]
+     * @param pad_radius radius of the pad's centre [m]
+     * @param trailing_amplitude A at the trailing edge [-]
+     * @throws std::invalid_argument for n < 2, fewer than 2 samples or a
+     * sampling rate that is not positive.
      */
     io::ContactHistory
     synthetic_squeal_history(unsigned int n,
