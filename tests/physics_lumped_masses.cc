@@ -26,7 +26,7 @@
 #include <squeal/physics/structural_model.h>
 #include <squeal/transient/explicit_dynamics.h>
 
-#include "check.h"
+#include "test_tools.h"
 
 #include <cmath>
 #include <fstream>
@@ -95,26 +95,9 @@ namespace
   std::vector<double>
   frequencies(const std::string &masses, const unsigned int degree)
   {
-    ParameterHandler                handler;
-    const parameters::AllParameters prm =
-      bar_parameters(masses, degree, handler);
-    ConditionalOStream       quiet(std::cout, false);
-    physics::StructuralModel model(prm, MPI_COMM_WORLD);
-    model.setup_and_assemble(quiet);
-    const physics::MatrixParts parts = model.parts();
-    const auto                 c     = parts.coefficients(prm.nominal_point());
-    physics::PETScMatrix       K, Mm;
-    parts.combine(c.structural, K);
-    parts.combine(c.mass, Mm);
-    eigen::BandOptions band;
-    band.f_min            = 1000.;
-    band.f_max            = 70000.;
-    band.target_frequency = 100.;
-    const auto modes      = eigen::solve_undamped(Mm, K, band, 1., true, quiet);
-    std::vector<double> f;
-    for (const auto &m : modes)
-      f.push_back(std::sqrt(std::real(m.omega2)) / (2 * M_PI));
-    return f;
+    ParameterHandler handler;
+    return test_tools::undamped_frequencies(
+      bar_parameters(masses, degree, handler), 1000., 70000.);
   }
 
   // The frequency of @p f nearest @p x.

@@ -31,7 +31,7 @@
 #include <squeal/io/mesh_file.h>
 #include <squeal/physics/structural_model.h>
 
-#include "check.h"
+#include "test_tools.h"
 
 #include <algorithm>
 #include <array>
@@ -160,25 +160,10 @@ namespace
   std::vector<double>
   model_frequencies(const std::string &law, const unsigned int N)
   {
-    ParameterHandler                handler;
-    const parameters::AllParameters prm = block_parameters(law, handler);
-    ConditionalOStream              quiet(std::cout, false);
-    physics::StructuralModel        model(prm, MPI_COMM_WORLD);
-    model.setup_and_assemble(quiet);
-    const physics::MatrixParts parts = model.parts();
-    const auto                 c     = parts.coefficients(prm.nominal_point());
-    physics::PETScMatrix       K, M;
-    parts.combine(c.structural, K);
-    parts.combine(c.mass, M);
-    eigen::BandOptions band;
-    band.f_min            = 1000.;
-    band.f_max            = 45000.;
-    band.target_frequency = 100.;
-    band.initial_nev      = N + 4;
-    const auto modes      = eigen::solve_undamped(M, K, band, 1., true, quiet);
-    std::vector<double> f;
-    for (const auto &m : modes)
-      f.push_back(std::sqrt(std::real(m.omega2)) / (2 * M_PI));
+    ParameterHandler handler;
+    auto f = test_tools::undamped_frequencies(block_parameters(law, handler),
+                                              1000.,
+                                              45000.);
     f.resize(std::min<std::size_t>(f.size(), N));
     return f;
   }

@@ -9,8 +9,10 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <squeal/eigen/mac.h>
+#include <squeal/eigen/qep_solver.h>
 #include <squeal/eigen/reduced_model.h>
 #include <squeal/parameters/parameters.h>
+#include <squeal/physics/structural_model.h>
 
 #include "check.h"
 
@@ -110,6 +112,34 @@ namespace test_tools
     }
   };
 
+  /**
+   * The natural frequencies [Hz] in (f_min, f_max) of the undamped
+   * structure of @p prm (bodies, springs, masses; no friction) at its
+   * nominal point, ascending: K phi = omega^2 M phi with SLEPc.
+   */
+  inline std::vector<double>
+  undamped_frequencies(const squeal::parameters::AllParameters &prm,
+                       const double                             f_min,
+                       const double                             f_max)
+  {
+    using namespace squeal;
+    dealii::ConditionalOStream quiet(std::cout, false);
+    physics::StructuralModel   model(prm, MPI_COMM_WORLD);
+    model.setup_and_assemble(quiet);
+    const physics::MatrixParts parts = model.parts();
+    const auto                 c     = parts.coefficients(prm.nominal_point());
+    physics::PETScMatrix       K, M;
+    parts.combine(c.structural, K);
+    parts.combine(c.mass, M);
+    eigen::BandOptions band;
+    band.f_min            = f_min;
+    band.f_max            = f_max;
+    band.target_frequency = 100.;
+    std::vector<double> f;
+    for (const auto &m : eigen::solve_undamped(M, K, band, 1., true, quiet))
+      f.push_back(std::sqrt(std::real(m.omega2)) / (2 * M_PI));
+    return f;
+  }
 } // namespace test_tools
 
 #endif

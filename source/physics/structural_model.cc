@@ -67,6 +67,13 @@ namespace squeal
                             quadrature,
                             update_values | update_JxW_values);
       std::vector<Vector<double>> values(quadrature.size(), Vector<double>(3));
+      const QGauss<2>             face_rule(model.fe.degree + 1);
+      FEFaceValues<3>             fv(model.mapping,
+                         model.fe,
+                         face_rule,
+                         update_values | update_JxW_values);
+      std::vector<Vector<double>> face_values(face_rule.size(),
+                                              Vector<double>(3));
       for (const PETScVector *x : {&re, &im})
         {
           PETScVector owned = *x;
@@ -85,23 +92,7 @@ namespace squeal
                   energy[cell->material_id()] +=
                     rho * (values[q] * values[q]) * fe_values.JxW(q);
               }
-        }
-      // the lumped masses, with the body they sit on
-      const QGauss<2>             face_rule(model.fe.degree + 1);
-      FEFaceValues<3>             fv(model.mapping,
-                         model.fe,
-                         face_rule,
-                         update_values | update_JxW_values);
-      std::vector<Vector<double>> face_values(face_rule.size(),
-                                              Vector<double>(3));
-      for (const PETScVector *x : {&re, &im})
-        {
-          PETScVector owned = *x;
-          model.constraints.distribute(owned);
-          PETScVector ghosted(model.locally_owned_dofs,
-                              model.locally_relevant_dofs,
-                              model.comm);
-          ghosted = owned;
+          // the lumped masses, with the body they sit on
           for (const scene::LumpedMass &m : model.scene->masses)
             if (m.on_faces)
               {
