@@ -1,0 +1,155 @@
+// Where the discretisation error of the CEA's modes sits: Kelly's
+// indicator on the modes of a sweep point (mesh_error.vtu, mesh_error.csv),
+// which also drives the adaptive refinement.
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/grid_refinement.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/error_estimator.h>
+
+#include <squeal/analyses/cea.h>
+#include <squeal/contact/scene_contact.h>
+#include <squeal/eigen/mac.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace analyses
+  {
+    using namespace dealii;
+
+    // Kelly's estimator on the real and imaginary parts of the modes PAIRS,
+    // each scaled to unit kinetic norm, squared and summed per cell (see
+    // write_error_indicator()).
+    Vector<double>
+    ComplexEigenvalueAnalysis::mode_indicator(
+      const std::vector<eigen::EigenPair> &pairs,
+      const parameters::ScalarPoint       &values,
+      const std::vector<double>           &weights) const
+    {
+      const unsigned int   n_cells = model->triangulation.n_active_cells();
+      Vector<double>       sum(n_cells);
+      physics::PETScVector ghosted(model->locally_owned_dofs,
+                                   model->locally_relevant_dofs,
+                                   comm);
+      // the whole mass of the point: every mass part at its coefficient
+      physics::PETScMatrix M;
+      model->parts().mass(values, M);
+      for (const auto &pair : pairs)
+        {
+          physics::PETScVector re = pair.re, im = pair.im, Mx(pair.re);
+          M.vmult(Mx, re);
+          double norm2 = re * Mx;
+          M.vmult(Mx, im);
+          norm2 += im * Mx;
+          if (!(norm2 > 0.))
+            continue;
+          const double   weight = (pair.lambda.real() > 0. ? 2. : 1.) / norm2;
+          Vector<double> mode(n_cells);
+          for (physics::PETScVector *x : {&re, &im})
+            {
+              model->constraints.distribute(*x);
+              ghosted = *x;
+              Vector<float> eta(n_cells);
+              KellyErrorEstimator<3>::estimate(model->mapping,
+                                               model->dof_handler,
+                                               QGauss<2>(model->fe.degree + 1),
+                                               {},
+                                               ghosted,
+                                               eta);
+              for (unsigned int c = 0; c < n_cells; ++c)
+                mode[c] += weight * double(eta[c]) * double(eta[c]);
+            }
+          if (!weights.empty())
+            {
+              // where this mode's error sits (unit sum over all cells), times
+              // the square of its estimated error
+              Utilities::MPI::sum(mode, comm, mode);
+              const double total = mode.l1_norm();
+              if (total > 0.)
+                mode *= std::pow(weights[&pair - pairs.data()], 2) / total;
+              if (Utilities::MPI::this_mpi_process(comm) != 0)
+                mode = 0.; // summed over the ranks below
+            }
+          sum += mode;
+        }
+      // each rank estimated its own cells
+      Utilities::MPI::sum(sum, comm, sum);
+      return sum;
+    }
+
+    // Where the discretisation error of the modes sits: Kelly's estimator
+    // (the jump of the gradient across faces; Kelly, Gago, Zienkiewicz &
+    // Babuska, IJNME 19, 1983) on the real and imaginary parts of every mode
+    // of the first sweep point, each mode scaled to unit kinetic norm
+    // (re^T M re + im^T M im = 1), the squares summed with weight 2 for
+    // unstable and 1 for stable modes. The cell values go to mesh_error.vtu;
+    // their share per body is printed and written to mesh_error.csv.
+    void
+    ComplexEigenvalueAnalysis::write_error_indicator() const
+    {
+      const auto &pt = points.empty() ? nullptr : &points[0];
+      if (pt == nullptr || pt->lambda.empty())
+        return;
+      TimerOutput::Scope            t(timer, "error indicator");
+      std::vector<eigen::EigenPair> pairs;
+      if (!pt->q.empty())
+        for (unsigned int k = 0; k < pt->lambda.size(); ++k)
+          {
+            pairs.emplace_back();
+            pairs.back().lambda = pt->lambda[k];
+            reduced.expand(pt->q[k], pairs.back().re, pairs.back().im);
+          }
+      const Vector<double> sum =
+        mode_indicator(pt->q.empty() ? pt->full : pairs, pt->values);
+      const unsigned int n_cells = model->triangulation.n_active_cells();
+      // per body of the scene: squared indicator and cells
+      const auto &bodies = model->scene->bodies;
+      std::map<types::material_id, std::pair<double, unsigned int>> by_body;
+      Vector<float> indicator(n_cells), body(n_cells);
+      double        total = 0.;
+      for (const auto &cell : model->triangulation.active_cell_iterators())
+        {
+          const unsigned int c = cell->active_cell_index();
+          indicator[c]         = std::sqrt(sum[c]);
+          body[c]              = cell->material_id();
+          by_body[cell->material_id()].first += sum[c];
+          ++by_body[cell->material_id()].second;
+          total += sum[c];
+        }
+      pcout << "Error indicator (Kelly, " << pt->lambda.size()
+            << " modes of the first point; mesh_error.vtu):"
+            << std::setprecision(3);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        pcout << (b == 0 ? " " : ", ") << bodies[b].name << " "
+              << 100. * by_body[bodies[b].id].first / total << " %";
+      pcout << " of the squared sum" << std::setprecision(6) << std::endl;
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          std::ofstream csv(work_dir + "/mesh_error.csv");
+          csv << "body,cells,share_of_squared_indicator\n";
+          for (const scene::Body &b : bodies)
+            csv << b.name << ',' << by_body[b.id].second << ','
+                << by_body[b.id].first / total << '\n';
+        }
+      DataOut<3> data_out;
+      data_out.attach_triangulation(model->triangulation);
+      data_out.add_data_vector(indicator, "error_indicator");
+      data_out.add_data_vector(body, "body");
+      data_out.build_patches();
+      data_out.write_vtu_in_parallel(work_dir + "/mesh_error.vtu", comm);
+    }
+  } // namespace analyses
+} // namespace squeal

@@ -1,0 +1,317 @@
+// The scene's springs to ground: each spread over the body's face within its
+// attachment radius as a Winkler layer with cosine-bell weights, or at the
+// nearest node when no face is in reach.
+
+#include <deal.II/base/qprojector.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <squeal/physics/structural_model.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace squeal
+{
+  namespace physics
+  {
+    using namespace dealii;
+
+    void
+    StructuralModel::add_springs(const scene::SpringSet &s,
+                                 ConditionalOStream     &pcout)
+    {
+      const std::vector<Point<3>> &stations = s.stations;
+      if (stations.empty())
+        return;
+      if (s.station_normals.size() != stations.size())
+        throw std::runtime_error("springs '" + s.name +
+                                 "': one face normal per station needed");
+      // the components the springs act along (for the point springs: one)
+      std::vector<unsigned int> acting;
+      for (unsigned int c = 0; c < 3; ++c)
+        if (s.direction[c] != 0.)
+          acting.push_back(c);
+
+      std::vector<double>               total(stations.size(), 0.);
+      std::vector<unsigned int>         faces_per_spring(stations.size(), 0);
+      const std::vector<SpringFaceRule> rules =
+        spring_face_rules(s, total, faces_per_spring);
+      {
+        const std::vector<double> local = total;
+        Utilities::MPI::sum(local, comm, total);
+      }
+      assemble_spread_springs(s, rules, total);
+      const bool any_point =
+        std::find(total.begin(), total.end(), 0.) != total.end();
+      if (any_point && acting.size() != 1)
+        throw std::runtime_error(
+          "springs '" + s.name +
+          "': a station has no face within the "
+          "attachment radius, and a spring at one node needs a direction "
+          "along a coordinate axis; give a radius that reaches the faces");
+      const auto [worst, n_point] =
+        any_point ? add_nearest_node_springs(s, total, acting[0]) :
+                    std::pair<double, unsigned int>(0., 0u);
+      const double a = s.radius;
+      stiffness_springs.compress(VectorOperation::add);
+      // faces per spread spring (a report, not an input)
+      std::vector<unsigned int> counts(stations.size());
+      Utilities::MPI::sum(faces_per_spring, comm, counts);
+      unsigned int n_min = std::numeric_limits<unsigned int>::max(), n_max = 0;
+      for (unsigned int i = 0; i < stations.size(); ++i)
+        if (total[i] > 0.)
+          {
+            n_min = std::min(n_min, counts[i]);
+            n_max = std::max(n_max, counts[i]);
+          }
+      pcout << "Springs: " << stations.size() << " x " << s.stiffness
+            << " N/m along (" << s.direction << "), ";
+      if (n_point == stations.size())
+        pcout << "each at the nearest node";
+      else
+        pcout << stations.size() - n_point << " spread over radius " << 1e3 * a
+              << " mm ("
+              << (lumped_springs ? "lumped on the face nodes" :
+                                   "consistent Winkler layer")
+              << ", " << n_min << "-" << n_max << " faces each)"
+              << (n_point > 0 ? ", " + std::to_string(n_point) +
+                                  " at the nearest node (none inside)" :
+                                "");
+      if (worst > 1e-9)
+        pcout << " (WARNING: a station lies " << worst
+              << " m from the nearest node; choose mesh counts that put "
+                 "nodes at the stations)";
+      pcout << std::endl;
+    }
+
+    // One record per face the bells touch: the quadrature points some
+    // bell covers, in the cell's unit coordinates, each with its (spring,
+    // bell x JxW [m^2]) pairs, and the shape functions of the acting
+    // components nonzero on the face.
+    struct StructuralModel::SpringFaceRule
+    {
+      DoFHandler<3>::active_cell_iterator                       cell;
+      std::vector<Point<3>>                                     unit;
+      std::vector<std::vector<std::pair<unsigned int, double>>> weights;
+      std::vector<unsigned int>                                 shapes;
+    };
+
+    // Each spring spread over the disc of the body's face within the
+    // attachment radius of its station, with cosine-bell weights normalised
+    // to the spring's stiffness: a Winkler layer of stiffness density
+    // k bell(x) / int(bell) [N/m^3] along the spring's direction. Consistent
+    // (default): integrated exactly enough by composite Gauss rules of
+    // sub-intervals a / 6 on every face the bell touches, so the model is
+    // the same on every mesh and degree and a finer space can only lower its
+    // frequencies. Lumped (explicit dynamics): the Gauss-Lobatto rule on the
+    // face's FE_Q support points, a diagonal that changes with the node
+    // spacing.
+    std::vector<StructuralModel::SpringFaceRule>
+    StructuralModel::spring_face_rules(
+      const scene::SpringSet    &s,
+      std::vector<double>       &total,
+      std::vector<unsigned int> &faces_per_spring) const
+    {
+      const std::vector<Point<3>> &stations = s.stations;
+      const double                 a        = s.radius;
+      // distance of x from station i's plane, and within that plane
+      const auto off_plane = [&](const Point<3> &x, const unsigned int i) {
+        return std::abs((x - stations[i]) * s.station_normals[i]);
+      };
+      const auto bell = [&](const Point<3> &x, const unsigned int i) {
+        if (off_plane(x, i) > s.tolerance)
+          return 0.;
+        const Tensor<1, 3> d = x - stations[i];
+        const Tensor<1, 3> v =
+          d - (d * s.station_normals[i]) * s.station_normals[i];
+        // |v| by hypot (no overflow; exact when a component is 0)
+        const double r = std::hypot(std::hypot(v[0], v[1]), v[2]);
+        return r < a ? 0.5 * (1. + std::cos(numbers::PI * r / a)) : 0.;
+      };
+      const unsigned int n = fe.n_dofs_per_cell();
+      // a boundary face of the body on some station's plane
+      const auto on_side_face = [&](const auto &cell, const unsigned int f) {
+        if (!cell->is_locally_owned() || cell->material_id() != s.body ||
+            !cell->face(f)->at_boundary())
+          return false;
+        for (unsigned int i = 0; i < stations.size(); ++i)
+          if (off_plane(cell->face(f)->center(), i) < s.tolerance)
+            return true;
+        return false;
+      };
+      std::vector<SpringFaceRule> rules;
+      const QGauss<1>             gauss(fe.degree + 1);
+      if (a > 0)
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          for (const auto f : cell->face_indices())
+            if (on_side_face(cell, f))
+              {
+                const auto   face = cell->face(f);
+                const double h    = face->diameter();
+                bool         near = false;
+                for (unsigned int i = 0; i < stations.size(); ++i)
+                  near =
+                    near || (off_plane(face->center(), i) < s.tolerance &&
+                             face->center().distance(stations[i]) < a + h / 2);
+                if (!near)
+                  continue;
+                // the face must be a parallelogram (weights = unit weights
+                // times its area)
+                const Tensor<1, 3> d = face->vertex(0) + face->vertex(3) -
+                                       face->vertex(1) - face->vertex(2);
+                if (!(d.norm() < 1e-9 * h))
+                  throw std::runtime_error(
+                    "springs '" + s.name +
+                    "': a face they spread over is "
+                    "not a parallelogram; set their attachment radius to 0 "
+                    "(point springs) or remesh the face");
+                const Quadrature<2> q2 =
+                  lumped_springs ?
+                    Quadrature<2>(QGaussLobatto<2>(fe.degree + 1)) :
+                    Quadrature<2>(
+                      QIterated<2>(gauss,
+                                   std::min(200u,
+                                            static_cast<unsigned int>(
+                                              std::ceil(6. * h / a)))));
+                const Quadrature<3> q3 =
+                  QProjector<3>::project_to_face(ReferenceCells::Hexahedron,
+                                                 q2,
+                                                 f);
+                SpringFaceRule    rule;
+                std::vector<bool> touched(stations.size(), false);
+                rule.cell = cell;
+                for (unsigned int q = 0; q < q3.size(); ++q)
+                  {
+                    const Point<3> x =
+                      mapping.transform_unit_to_real_cell(cell, q3.point(q));
+                    std::vector<std::pair<unsigned int, double>> w;
+                    for (unsigned int i = 0; i < stations.size(); ++i)
+                      if (const double b = bell(x, i); b > 0.)
+                        {
+                          w.emplace_back(i, b * q3.weight(q) * face->measure());
+                          total[i] += w.back().second;
+                          touched[i] = true;
+                        }
+                    if (w.empty())
+                      continue;
+                    rule.unit.push_back(q3.point(q));
+                    rule.weights.push_back(std::move(w));
+                  }
+                for (unsigned int i = 0; i < stations.size(); ++i)
+                  faces_per_spring[i] += touched[i];
+                for (unsigned int k = 0; k < n; ++k)
+                  if (s.direction[fe.system_to_component_index(k).first] !=
+                        0. &&
+                      fe.has_support_on_face(k, f))
+                    rule.shapes.push_back(k);
+                rules.push_back(std::move(rule));
+              }
+      return rules;
+    }
+
+    void
+    StructuralModel::assemble_spread_springs(
+      const scene::SpringSet            &s,
+      const std::vector<SpringFaceRule> &rules,
+      const std::vector<double>         &total)
+    {
+      const unsigned int                   n = fe.n_dofs_per_cell();
+      FullMatrix<double>                   cell_k(n, n);
+      std::vector<types::global_dof_index> dofs(n);
+      std::vector<double>                  phi;
+      for (const auto &rule : rules)
+        {
+          cell_k = 0;
+          phi.resize(rule.shapes.size());
+          for (unsigned int q = 0; q < rule.unit.size(); ++q)
+            {
+              double c = 0.;
+              for (const auto &[i, w] : rule.weights[q])
+                c += reference.spring_stiffness * w / total[i];
+              for (unsigned int k = 0; k < phi.size(); ++k)
+                {
+                  const unsigned int comp =
+                    fe.system_to_component_index(rule.shapes[k]).first;
+                  phi[k] =
+                    s.direction[comp] * fe.shape_value_component(rule.shapes[k],
+                                                                 rule.unit[q],
+                                                                 comp);
+                }
+              for (unsigned int k = 0; k < phi.size(); ++k)
+                for (unsigned int l = 0; l < phi.size(); ++l)
+                  cell_k(rule.shapes[k], rule.shapes[l]) += c * phi[k] * phi[l];
+            }
+          if (!rule.unit.empty())
+            {
+              rule.cell->get_dof_indices(dofs);
+              constraints.distribute_local_to_global(cell_k,
+                                                     dofs,
+                                                     stiffness_springs);
+            }
+        }
+    }
+
+    // Stations with no node inside the radius (or radius 0): the nearest
+    // unconstrained support node takes the whole spring (its DoF of the
+    // acting component); among nodes at the same distance the lowest DoF
+    // index, the same on every rank.
+    std::pair<double, unsigned int>
+    StructuralModel::add_nearest_node_springs(const scene::SpringSet    &s,
+                                              const std::vector<double> &total,
+                                              const unsigned int component)
+    {
+      const std::vector<Point<3>>         &stations = s.stations;
+      const unsigned int                   n        = fe.n_dofs_per_cell();
+      std::vector<types::global_dof_index> dofs(n);
+      const auto                          &unit = fe.get_unit_support_points();
+      std::vector<double>                  best(stations.size(), 1e300);
+      std::vector<types::global_dof_index> best_dof(
+        stations.size(), std::numeric_limits<types::global_dof_index>::max());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial() && cell->material_id() == s.body)
+          {
+            cell->get_dof_indices(dofs);
+            for (unsigned int k = 0; k < n; ++k)
+              if (fe.system_to_component_index(k).first == component &&
+                  !constraints.is_constrained(dofs[k])) // not hanging
+                {
+                  const Point<3> x =
+                    mapping.transform_unit_to_real_cell(cell, unit[k]);
+                  for (unsigned int i = 0; i < stations.size(); ++i)
+                    {
+                      const double d = x.distance(stations[i]);
+                      if (d < best[i] - 1e-12 ||
+                          (d < best[i] + 1e-12 && dofs[k] < best_dof[i]))
+                        {
+                          best[i]     = std::min(best[i], d);
+                          best_dof[i] = dofs[k];
+                        }
+                    }
+                }
+          }
+      double       worst   = 0;
+      unsigned int n_point = 0;
+      for (unsigned int i = 0; i < stations.size(); ++i)
+        if (total[i] == 0.)
+          {
+            ++n_point;
+            const double d = Utilities::MPI::min(best[i], comm);
+            const types::global_dof_index dof = Utilities::MPI::min(
+              best[i] < d + 1e-12 ?
+                best_dof[i] :
+                std::numeric_limits<types::global_dof_index>::max(),
+              comm);
+            worst = std::max(worst, d);
+            if (locally_owned_dofs.is_element(dof))
+              stiffness_springs.add(dof,
+                                    dof,
+                                    reference.spring_stiffness *
+                                      s.direction[component] *
+                                      s.direction[component]);
+          }
+      return {worst, n_point};
+    }
+  } // namespace physics
+} // namespace squeal
