@@ -26,7 +26,8 @@ namespace squeal
          {{2, 6, 7, 3}},
          {{3, 7, 4, 0}}}};
       /// The Abaqus face number (1-6) of deal.II face f.
-      inline constexpr std::array<unsigned int, 6> abaqus_face_of{{6, 4, 3, 5, 1, 2}};
+      inline constexpr std::array<unsigned int, 6> abaqus_face_of{
+        {6, 4, 3, 5, 1, 2}};
     } // namespace internal
   }   // namespace io
 } // namespace squeal

@@ -20,28 +20,28 @@ namespace squeal
     {
       namespace
       {
-      // Union-find over the bodies plus the ground (index n).
-      struct Connectivity
-      {
-        std::vector<unsigned int> parent;
-        explicit Connectivity(const unsigned int n)
-          : parent(n + 1)
+        // Union-find over the bodies plus the ground (index n).
+        struct Connectivity
         {
-          std::iota(parent.begin(), parent.end(), 0u);
-        }
-        unsigned int
-        root(unsigned int i)
-        {
-          while (parent[i] != i)
-            i = parent[i] = parent[parent[i]];
-          return i;
-        }
-        void
-        join(const unsigned int a, const unsigned int b)
-        {
-          parent[root(a)] = root(b);
-        }
-      };
+          std::vector<unsigned int> parent;
+          explicit Connectivity(const unsigned int n)
+            : parent(n + 1)
+          {
+            std::iota(parent.begin(), parent.end(), 0u);
+          }
+          unsigned int
+          root(unsigned int i)
+          {
+            while (parent[i] != i)
+              i = parent[i] = parent[parent[i]];
+            return i;
+          }
+          void
+          join(const unsigned int a, const unsigned int b)
+          {
+            parent[root(a)] = root(b);
+          }
+        };
       } // namespace
 
       // Overlapping bodies: a vertex, face centre or cell centre of one body
