@@ -10,7 +10,8 @@ if [ -z "$format" ]; then
   echo "check_format: clang-format not found (Debian: apt-get install clang-format)" >&2
   exit 1
 fi
-mapfile -t files < <(git ls-files 'include/*.h' 'source/*.cc' 'source/*.h' \
+# tracked files and new ones git does not ignore
+mapfile -t files < <(git ls-files --cached --others --exclude-standard 'include/*.h' 'source/*.cc' 'source/*.h' \
                                   'tribology/*.cc' 'tribology/*.h' \
                                   'tests/*.cc' 'tests/*.h')
 if [ "${1:-}" = "--fix" ]; then
