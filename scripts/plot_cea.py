@@ -4,9 +4,9 @@
 usage: /usr/bin/python3 scripts/plot_cea.py OUTPUT_DIR
 
 Reads OUTPUT_DIR/eigenvalues.csv, unstable_regions.csv and sweep_axes.csv
-(which parameters were swept; without it, pad modulus against mu); writes
+(which named parameters were swept); writes
 frequency_vs_modulus.png (frequency against the first swept parameter, e.g.
-log10 E_pad, one panel per value of the second, e.g. mu, unstable eigenvalues
+log10 pad.E, one panel per value of the second, e.g. pad on disc.mu, unstable eigenvalues
 in black), locus.png (Re lambda against frequency of the branches that become
 unstable) and stability_map.png (unstable regions over the two swept
 parameters, coloured by frequency). Files are written under a temporary name
@@ -52,7 +52,8 @@ class Axis:
         return math.log10(v) if self.log else v
 
     def bound(self, which):
-        """E_pad_Pa -> E_pad_min_Pa; mu -> mu_min (unstable_regions.csv)."""
+        """pad.E_Pa -> pad.E_min_Pa; pad_on_disc.mu -> pad_on_disc.mu_min
+        (unstable_regions.csv)."""
         for unit in self.UNITS:
             if self.column.endswith(unit):
                 return self.column[: -len(unit)] + "_" + which + unit
@@ -61,9 +62,6 @@ class Axis:
 
 def read_axes(out):
     path = os.path.join(out, "sweep_axes.csv")
-    if not os.path.exists(path):
-        return Axis("pad modulus", "E_pad_Pa", True), Axis(
-            "friction coefficient", "mu", False)
     axes = {r["axis"]: Axis(r["parameter"], r["column"], r["log"] == "1")
             for r in read_csv(path)}
     return axes["first"], axes["second"]

@@ -33,10 +33,16 @@ main(int argc, char **argv)
 
   physics::StructuralModel model_a(a, MPI_COMM_WORLD),
     model_b(b, MPI_COMM_WORLD);
+  // the bodies' parameters that differ get parts of their own (the disc's
+  // and the support's stiffness stay in the common part, which also sets
+  // the constrained rows' diagonal); the interface, spring and damping
+  // parameters always vary
+  for (auto *m : {&model_a, &model_b})
+    m->varied = std::set<std::string>{"pad.E", "support.rho"};
   model_a.setup_and_assemble(quiet);
   model_b.setup_and_assemble(quiet);
   const auto parts_a = model_a.parts(), parts_b = model_b.parts();
-  const parameters::ScalarPoint p = b.nominal_point();
+  const parameters::ScalarPoint p = model_b.scene->nominal_point();
 
   using Assemble =
     void (physics::MatrixParts::*)(const parameters::ScalarPoint &,

@@ -51,16 +51,10 @@ namespace
     eigen::BandOptions band{
       prm.eigensolver.f_min, prm.eigensolver.f_max, 100., 1e-10, 60};
     std::vector<std::complex<double>> l;
-    for (const auto &p : eigen::solve_full(model.parts(),
-                                           {prm.materials.pad.youngs_modulus,
-                                            0.,
-                                            prm.interface.normal_stiffness,
-                                            prm.springs.stiffness,
-                                            prm.materials.support.density,
-                                            alpha,
-                                            beta},
-                                           band,
-                                           quiet))
+    parameters::ScalarPoint           point = model.scene->nominal_point();
+    point.set("damping.alpha", alpha);
+    point.set("damping.beta", beta);
+    for (const auto &p : eigen::solve_full(model.parts(), point, band, quiet))
       l.push_back(p.lambda);
     return l;
   }

@@ -31,9 +31,9 @@ main(int argc, char **argv)
   model.setup_and_assemble(quiet);
   const auto parts    = model.parts();
   const auto at_point = [&](const double E, const double mu) {
-    parameters::ScalarPoint p = prm.nominal_point();
-    p.E_pad                   = E;
-    p.mu                      = mu;
+    parameters::ScalarPoint p = model.scene->nominal_point();
+    p.set("pad.E", E);
+    p.set("pad on disc.mu", mu);
     return p;
   };
   eigen::BandOptions band{900., 20000., 100., 1e-10, 60};

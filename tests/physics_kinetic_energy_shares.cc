@@ -31,9 +31,9 @@ main(int argc, char **argv)
       prm.mesh.fe_degree = degree;
       physics::StructuralModel model(prm, MPI_COMM_WORLD);
       model.setup_and_assemble(quiet);
-      parameters::ScalarPoint point = prm.nominal_point();
-      point.support_density         = 7800.;
-      const std::string name        = "degree " + std::to_string(degree) + ": ";
+      parameters::ScalarPoint point = model.scene->nominal_point();
+      point.set("support.rho", 7800.);
+      const std::string name = "degree " + std::to_string(degree) + ": ";
 
       physics::PETScVector u(model.locally_owned_dofs, MPI_COMM_WORLD),
         zero(model.locally_owned_dofs, MPI_COMM_WORLD);

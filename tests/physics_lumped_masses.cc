@@ -191,10 +191,10 @@ main(int argc, char **argv)
         u(i) = 0.;
     u.compress(VectorOperation::insert);
     physics::PETScMatrix Mm;
-    model.parts().mass(prm.nominal_point(), Mm);
+    model.parts().mass(model.scene->nominal_point(), Mm);
     Mm.vmult(Mu, u);
-    const std::vector<double> e =
-      physics::kinetic_energy_by_body(model, prm.nominal_point(), u, zero);
+    const std::vector<double> e = physics::kinetic_energy_by_body(
+      model, model.scene->nominal_point(), u, zero);
     check("kinetic energy with lumped masses = u^T M u", e[0], u * Mu, 1e-10);
     Vector<double> lumped =
       transient::lumped_mass(model.dof_handler,

@@ -53,7 +53,9 @@ namespace
                              model.dof_handler,
                              SlidingField(f),
                              u);
-    model.stiffness_springs.vmult(ku, u);
+    physics::PETScMatrix K;
+    model.parts().springs(model.scene->nominal_point(), K);
+    K.vmult(ku, u);
     return u * ku;
   }
 } // namespace
@@ -89,9 +91,9 @@ main(int argc, char **argv)
       prm.mesh.support_cells_length = support_cells;
       physics::StructuralModel model(prm, MPI_COMM_WORLD);
       model.setup_and_assemble(quiet);
-      const auto       &g  = prm.geometry;
-      const double      k  = model.reference.spring_stiffness;
-      const double      d  = g.pad_size / 4; // rows at x_pad +- 2.5 mm
+      const auto  &g = prm.geometry;
+      const double k = model.scene->nominal_point().get("support springs.k");
+      const double d = g.pad_size / 4; // rows at x_pad +- 2.5 mm
       const std::string on = " (degree " + std::to_string(degree) + ", " +
                              std::to_string(support_cells) + " support cells)";
       check("rigid translation: u^T K_s u = 44 k" + on,

@@ -47,10 +47,10 @@ main(int argc, char **argv)
   const eigen::BandOptions band{900., 20000., 100., 1e-10, 60};
 
   const auto at = [&](const double E, const double mu, const double kn) {
-    parameters::ScalarPoint p = prm.nominal_point();
-    p.E_pad                   = E;
-    p.mu                      = mu;
-    p.interface_stiffness     = kn;
+    parameters::ScalarPoint p = model.scene->nominal_point();
+    p.set("pad.E", E);
+    p.set("pad on disc.mu", mu);
+    p.set("pad on disc.k_n", kn);
     return p;
   };
   struct Case
@@ -107,7 +107,7 @@ main(int argc, char **argv)
       physics::PETScMatrix Ks, Ki;
       const auto           coeff = parts.coefficients(c.point);
       auto structural = coeff.structural, interface = coeff.stiffness;
-      for (unsigned int k = 0; k < physics::MatrixParts::n_parts; ++k)
+      for (unsigned int k = 0; k < parts.size(); ++k)
         interface[k] -= structural[k];
       parts.combine(structural, Ks);
       parts.combine(interface, Ki);
@@ -143,11 +143,11 @@ main(int argc, char **argv)
   // near-free support
   {
     parameters::ScalarPoint p = at(25e9, 0.5, kn);
-    p.spring_stiffness        = 1e-6;
-    eigen::BandOptions low    = band;
-    low.f_min                 = 1.;
-    low.target_frequency      = 0.5;
-    const auto   full         = eigen::solve_full(parts, p, low, quiet);
+    p.set("support springs.k", 1e-6);
+    eigen::BandOptions low = band;
+    low.f_min              = 1.;
+    low.target_frequency   = 0.5;
+    const auto   full      = eigen::solve_full(parts, p, low, quiet);
     unsigned int spurious = 0, near_zero = 0;
     for (const auto &f : full)
       if (f.lambda.imag() / (2 * M_PI) < 100.)

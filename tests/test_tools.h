@@ -61,14 +61,14 @@ namespace test_tools
   /**
    * The two-degree-of-freedom model of Hoffmann et al. (2002)
    * (verification A2) as matrix parts: M = I, K = [[a, c - mu k3], [c, b]]
-   * with b carried by the pad-modulus part (so a sweep of "E_pad" sweeps b)
+   * with b carried by a part scaled by the parameter "b"
    * and k3 by the friction part. a = 5e6, b = 6e6 (default), c = 1e6,
    * k3 = 4e6 N/m, m = 1 kg.
    */
   struct HoffmannTwoDof
   {
     static constexpr double    a = 5e6, b = 6e6, c = 1e6, k3 = 4e6;
-    squeal::eigen::PETScMatrix M, zero, rest, pad, friction;
+    squeal::eigen::PETScMatrix M, rest, pad, friction;
     HoffmannTwoDof()
     {
       using namespace dealii;
@@ -79,7 +79,7 @@ namespace test_tools
       for (unsigned int i = 0; i < 2; ++i)
         for (unsigned int j = 0; j < 2; ++j)
           dsp.add(i, j);
-      for (auto *A : {&M, &zero, &rest, &pad, &friction})
+      for (auto *A : {&M, &rest, &pad, &friction})
         A->reinit(owned, owned, dsp, MPI_COMM_WORLD);
       if (owned.n_elements() > 0)
         {
@@ -91,15 +91,24 @@ namespace test_tools
           pad.set(1, 1, 1.);
           friction.set(0, 1, -k3);
         }
-      for (auto *A : {&M, &zero, &rest, &pad, &friction})
+      for (auto *A : {&M, &rest, &pad, &friction})
         A->compress(VectorOperation::insert);
     }
-    /** M_fixed, M_support, K_rest, K_pad, K_springs, K_n, K_t. */
+    /**
+     * The parts M (damped by "alpha"), K_rest and K_pad (scaled by "b",
+     * both damped by "beta") and K_t (times "mu").
+     */
     squeal::physics::MatrixParts
     parts() const
     {
-      return {{{&M, &zero, &rest, &pad, &zero, &zero, &friction}},
-              point(1., 0.)};
+      using Kind = squeal::physics::MatrixParts::Kind;
+      squeal::physics::MatrixParts p;
+      p.parts     = {{&M, Kind::mass, "M", "", 1., "", "alpha"},
+                     {&rest, Kind::stiffness, "K_rest", "", 1., "", "beta"},
+                     {&pad, Kind::stiffness, "K_pad", "b", 1., "", "beta"},
+                     {&friction, Kind::interface_friction, "K_t", "", 1., "mu"}};
+      p.reference = point(1., 0.);
+      return p;
     }
     /** The point with K_22 = @p b_value, friction mu, Rayleigh alpha, beta. */
     static squeal::parameters::ScalarPoint
@@ -108,7 +117,12 @@ namespace test_tools
           const double alpha = 0,
           const double beta  = 0)
     {
-      return {b_value, mu, 1., 1., 1., alpha, beta};
+      squeal::parameters::ScalarPoint p;
+      p.add("b", b_value);
+      p.add("mu", mu);
+      p.add("alpha", alpha);
+      p.add("beta", beta);
+      return p;
     }
   };
 
@@ -127,8 +141,8 @@ namespace test_tools
     physics::StructuralModel   model(prm, MPI_COMM_WORLD);
     model.setup_and_assemble(quiet);
     const physics::MatrixParts parts = model.parts();
-    const auto                 c     = parts.coefficients(prm.nominal_point());
-    physics::PETScMatrix       K, M;
+    const auto           c = parts.coefficients(model.scene->nominal_point());
+    physics::PETScMatrix K, M;
     parts.combine(c.structural, K);
     parts.combine(c.mass, M);
     eigen::BandOptions band;

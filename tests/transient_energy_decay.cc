@@ -37,7 +37,8 @@ main(int argc, char **argv)
   model.setup_and_assemble(quiet);
   const physics::MatrixParts parts = model.parts();
   physics::PETScMatrix       K_petsc;
-  parts.combine(parts.coefficients(prm.nominal_point()).structural, K_petsc);
+  parts.combine(parts.coefficients(model.scene->nominal_point()).structural,
+                K_petsc);
   SparsityPattern      pattern;
   SparseMatrix<double> K;
   physics::copy_to_serial(K_petsc, pattern, K);

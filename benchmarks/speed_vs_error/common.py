@@ -148,7 +148,7 @@ subsection Damping
   set Alpha = 0
   set Beta = 0
 end
-""" + single_point_sweep("friction coefficient", 0, "pad modulus", 25e9), out,
+""" + single_point_sweep("damping.alpha", 0, "damping.beta", 0), out,
                                  ranks)
     dofs, modes = read_run(stdout, out)
     errors = disc_errors([f for f, _ in modes])

@@ -94,8 +94,8 @@ def run(name, ranks=1):
         print(f"running {name} ...", flush=True)
         stdout, seconds = run_squeal(
             squeal, "subsection Scene\n  set Type = tribobrake\nend\n"
-            + RUNS[name] + single_point_sweep("pad modulus", 1e9,
-                                              "friction coefficient", 0.01),
+            + RUNS[name] + single_point_sweep("pad.E", 1e9,
+                                              "pad on disc.mu", 0.01),
             out, ranks)
         with open(out + ".stdout", "w") as f:
             f.write(stdout)

@@ -40,9 +40,9 @@ subsection Eigensolver
   set Check points = 3
 end
 subsection Sweep
-  set First parameter = pad modulus
+  set First parameter = pad.E
   set First values = log 1e9 1e11 21
-  set Second parameter = friction coefficient
+  set Second parameter = pad on disc.mu
   set Second values = 0.2, 0.5, 0.7
 end
 """, out)

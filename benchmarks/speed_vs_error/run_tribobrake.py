@@ -46,7 +46,7 @@ def run(degree, around, radial, thick, extra="", ranks=1):
     stdout, seconds = run_squeal(squeal, mesh + """subsection Eigensolver
   set Method = full
 end
-""" + single_point_sweep("pad modulus", 25e9, "friction coefficient", 0.5), out,
+""" + single_point_sweep("pad.E", 25e9, "pad on disc.mu", 0.5), out,
                                  ranks)
     dofs, modes = read_run(stdout, out)
     if extra:  # the final mesh: the last adaptive cycle's report

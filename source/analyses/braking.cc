@@ -56,16 +56,21 @@ namespace squeal
       }
     } // namespace
 
-    BrakingAnalysis::BrakingAnalysis(const parameters::AllParameters &prm,
-                                     const ParameterHandler          &handler,
-                                     MPI_Comm                         comm)
+    BrakingAnalysis::BrakingAnalysis(
+      const parameters::AllParameters                   &prm,
+      const ParameterHandler                            &handler,
+      MPI_Comm                                           comm,
+      const std::vector<std::pair<std::string, double>> &point)
       : prm(prm)
       , handler(handler)
       , comm(comm)
       , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
       , timer(pcout, TimerOutput::summary, TimerOutput::wall_times)
       , model(prm, comm)
-    {}
+    {
+      model.nominal_overrides = point;
+      model.varied            = std::set<std::string>(); // nothing is swept
+    }
 
     void
     BrakingAnalysis::setup_system()
@@ -124,7 +129,7 @@ namespace squeal
           constraints.add_line(i);
       constraints.close();
 
-      const parameters::ScalarPoint nominal = prm.nominal_point();
+      const parameters::ScalarPoint nominal = model.scene->nominal_point();
       mass =
         lumped_mass(model.dof_handler, model.mapping, [&](const auto &cell) {
           return model.scene->density(cell->material_id(), nominal);
@@ -161,15 +166,23 @@ namespace squeal
       const auto            &tr      = prm.transient;
 
       // Stability limit and time step.
+      const scene::Scene &sc = *model.scene;
+      for (const scene::Body &b : sc.bodies)
+        if (b.own_damping)
+          throw std::runtime_error(
+            "body '" + b.name +
+            "' has its own Rayleigh damping: the braking run damps every "
+            "body with Damping/Alpha and Beta; remove alpha and beta from "
+            "its Bodies item");
       const auto limit = stable_time_step(
-        product, layout, mass, fixed, points, prm.damping.beta, tr.beta2);
+        product, layout, mass, fixed, points, sc.damping_beta, tr.beta2);
       ExplicitSettings s;
       s.time_step =
         tr.time_step > 0. ? tr.time_step : tr.safety_factor * limit.critical;
       s.beta2                = tr.beta2;
-      s.alpha                = prm.damping.alpha;
-      s.beta                 = prm.damping.beta;
-      s.friction_coefficient = prm.interface.friction_coefficient;
+      s.alpha                = sc.damping_alpha;
+      s.beta                 = sc.damping_beta;
+      s.friction_coefficient = sc.common_friction_coefficient(nominal);
       s.pgs_tolerance        = tr.contact_tolerance;
       s.pgs_max_iterations   = tr.contact_iterations;
       if (tr.time_step > limit.critical)
@@ -241,7 +254,7 @@ namespace squeal
     {
       const bool         serial = Utilities::MPI::n_mpi_processes(comm) == 1;
       const unsigned int n      = model.n_dofs();
-      const parameters::ScalarPoint nominal = prm.nominal_point();
+      const parameters::ScalarPoint nominal = model.scene->nominal_point();
       const auto                   &tr      = prm.transient;
       // Both products as the time loop calls them (the sparse one through
       // serial copies, serial runs only).
@@ -273,14 +286,13 @@ namespace squeal
             return sparse_product;
           }
       {
-        const physics::PETScMatrix &ks = model.stiffness_springs;
-        const double scale             = prm.nominal_point().spring_stiffness /
-                             model.parts().reference.spring_stiffness;
+        physics::PETScMatrix ks;
+        model.parts().springs(nominal, ks);
         Vector<double> springs(n);
         for (const auto i : model.locally_owned_dofs)
           for (auto e = ks.begin(i); e != ks.end(i); ++e)
             if (e->column() == i && !fixed[i])
-              springs[i] = scale * e->value();
+              springs[i] = e->value();
             else if (e->value() != 0. && !fixed[i])
               throw std::runtime_error("the support's springs couple two DoFs: "
                                        "the matrix-free product needs them "

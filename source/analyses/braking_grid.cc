@@ -3,6 +3,7 @@
 
 #include <squeal/analyses/braking.h>
 #include <squeal/io/output_directory.h>
+#include <squeal/scene/scene.h>
 
 #include <filesystem>
 #include <fstream>
@@ -28,13 +29,14 @@ namespace squeal
                                                         prm.output.overwrite,
                                                         handler,
                                                         comm);
-      const auto         points = prm.sweep_points();
+      const auto         scene  = scene::make_scene(prm);
+      const auto         points = scene::sweep_points(*scene, prm.sweep);
       const auto        &first  = prm.sweep.first.parameter,
                  &second        = prm.sweep.second.parameter;
       std::ostringstream table;
       table << std::setprecision(8) << "point,folder,"
-            << parameters::column_name(first) << ','
-            << parameters::column_name(second)
+            << scene->parameter(first).column() << ','
+            << scene->parameter(second).column()
             << ",verdict,dominant_frequency_Hz,growth_rate_per_s,"
                "growth_rate_at_dominant_frequency_per_s,"
                "limit_cycle_amplitude_m_per_s,separated,"
@@ -43,8 +45,7 @@ namespace squeal
       unsigned int n_failed = 0;
       for (unsigned int i = 0; i < points.size(); ++i)
         {
-          parameters::AllParameters at = prm;
-          at.set_nominal_point(points[i]);
+          parameters::AllParameters at     = prm;
           at.transient.grid                = false;
           at.transient.checkpoint_interval = 0;
           std::ostringstream name;
@@ -59,7 +60,7 @@ namespace squeal
           std::string    failure;
           BrakingSummary summary;
           {
-            BrakingAnalysis run(at, handler, comm);
+            BrakingAnalysis run(at, handler, comm, {{first, a}, {second, b}});
             try
               {
                 run.run();

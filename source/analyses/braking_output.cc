@@ -117,7 +117,7 @@ namespace squeal
                             std::vector<std::string>(3, "velocity_m_per_s"),
                             DataOut<3>::type_dof_data,
                             vec);
-        const VonMises von_mises(*model.scene, prm.nominal_point());
+        const VonMises von_mises(*model.scene, model.scene->nominal_point());
         out.add_data_vector(u, von_mises);
         out.build_patches(model.mapping, 1);
         out.write_vtu_in_parallel((fs::path(work_dir) / "vtu" / name).string(),
@@ -336,10 +336,11 @@ namespace squeal
       {
         std::ofstream out(dir / "summary.csv");
         out << "quantity,value\n"
-            << std::setprecision(10) << "verdict," << result.verdict
-            << "\npad_modulus_Pa," << prm.materials.pad.youngs_modulus
-            << "\nfriction_coefficient," << prm.interface.friction_coefficient
-            << "\ndominant_frequency_Hz," << result.dominant_frequency
+            << std::setprecision(10) << "verdict," << result.verdict;
+        // the scene's named parameters at this run
+        for (const auto &p : model.scene->parameters())
+          out << '\n' << p.column() << ',' << p.value;
+        out << "\ndominant_frequency_Hz," << result.dominant_frequency
             << "\ngrowth_rate_per_s," << g.growth_rate
             << "\ngrowth_fit_start_s," << g.fit_start << "\ngrowth_fit_end_s,"
             << g.fit_end << "\ngrowth_rate_at_dominant_frequency_per_s,"

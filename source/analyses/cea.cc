@@ -39,7 +39,21 @@ namespace squeal
       , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
       , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
       , model(std::make_unique<physics::StructuralModel>(prm, comm))
-    {}
+    {
+      model->varied = varied_parameters();
+    }
+
+    std::set<std::string>
+    ComplexEigenvalueAnalysis::varied_parameters() const
+    {
+      return {prm.sweep.first.parameter, prm.sweep.second.parameter};
+    }
+
+    std::vector<parameters::ScalarPoint>
+    ComplexEigenvalueAnalysis::sweep_points() const
+    {
+      return scene::sweep_points(*model->scene, prm.sweep);
+    }
 
 
     void
@@ -91,10 +105,10 @@ namespace squeal
     ComplexEigenvalueAnalysis::basis_samples() const
     {
       const unsigned int                   n = prm.eigensolver.reduced_samples;
-      std::vector<parameters::ScalarPoint> samples{prm.sweep_points()[0]};
+      std::vector<parameters::ScalarPoint> samples{sweep_points()[0]};
       for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
         {
-          if (!parameters::sweepable_parameter(axis->parameter).structural)
+          if (!model->scene->parameter(axis->parameter).structural)
             continue;
           const auto [lo, hi] =
             std::minmax_element(axis->values.begin(), axis->values.end());
@@ -127,11 +141,8 @@ namespace squeal
       s << std::setprecision(4);
       for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
         {
-          const auto &info = parameters::sweepable_parameter(axis->parameter);
-          s << (axis == &prm.sweep.first ? "" : ", ") << info.symbol << " = "
-            << p.get(axis->parameter);
-          if (info.unit[0])
-            s << ' ' << info.unit;
+          s << (axis == &prm.sweep.first ? "" : ", ") << axis->parameter
+            << " = " << p.get(axis->parameter);
         }
       return s.str();
     }
@@ -155,7 +166,7 @@ namespace squeal
                         pcout);
         }
 
-      const auto         sweep    = prm.sweep_points();
+      const auto         sweep    = sweep_points();
       const unsigned int n_points = sweep.size();
       pcout << "Sweep: " << prm.sweep.second.values.size() << " x "
             << prm.sweep.second.parameter << ", "
@@ -323,11 +334,12 @@ namespace squeal
               max_df  = std::max(max_df, df);
               max_dre = std::max(max_dre, dre);
               std::ostringstream row;
-              row << std::setprecision(12) << p << ',' << points[p].values.mu
-                  << ',' << points[p].values.E_pad << ',' << f.lambda.real()
-                  << ',' << f.lambda.imag() / (2 * M_PI) << ',' << match.real()
-                  << ',' << match.imag() / (2 * M_PI) << ',' << df << ','
-                  << dre;
+              row << std::setprecision(12) << p << ','
+                  << points[p].values.get(prm.sweep.first.parameter) << ','
+                  << points[p].values.get(prm.sweep.second.parameter) << ','
+                  << f.lambda.real() << ',' << f.lambda.imag() / (2 * M_PI)
+                  << ',' << match.real() << ',' << match.imag() / (2 * M_PI)
+                  << ',' << df << ',' << dre;
               check_rows.push_back(row.str());
             }
           if (full.size() != points[p].lambda.size())
@@ -408,10 +420,10 @@ namespace squeal
             << " 1/s):" << std::endl;
       if (regions.empty())
         pcout << "  none: every eigenvalue in the band is stable" << std::endl;
-      const auto &first_info =
-        parameters::sweepable_parameter(prm.sweep.first.parameter);
-      const auto &second_info =
-        parameters::sweepable_parameter(prm.sweep.second.parameter);
+      const auto first_info =
+        model->scene->parameter(prm.sweep.first.parameter);
+      const auto second_info =
+        model->scene->parameter(prm.sweep.second.parameter);
       for (const auto &r : regions)
         {
           std::ostringstream log10;
@@ -419,12 +431,12 @@ namespace squeal
             log10 << std::setprecision(4) << " (log10 "
                   << std::log10(r.first_min) << " - " << std::log10(r.first_max)
                   << ")";
-          pcout << "  " << second_info.symbol << " = " << r.second << ": "
-                << first_info.symbol << " " << std::setprecision(4)
-                << r.first_min << " - " << r.first_max << ' ' << first_info.unit
-                << log10.str() << ", " << std::setprecision(5) << r.f_min
-                << " - " << r.f_max << " Hz, max Re lambda " << r.max_re
-                << " 1/s, track " << r.track
+          pcout << "  " << second_info.name << " = " << r.second << ": "
+                << first_info.name << " " << std::setprecision(4) << r.first_min
+                << " - " << r.first_max << ' ' << first_info.unit << log10.str()
+                << ", " << std::setprecision(5) << r.f_min << " - " << r.f_max
+                << " Hz, max Re lambda " << r.max_re << " 1/s, track "
+                << r.track
                 << (r.partner_track >= 0 ? " locked in with track " +
                                              std::to_string(r.partner_track) :
                                            std::string())

@@ -174,6 +174,7 @@ namespace squeal
         prm_rich.mesh.fe_degree += extra;
         physics::StructuralModel rich(prm_rich, model.comm);
         rich.interface_mask = model.interface_mask;
+        rich.varied         = model.varied;
         rich.setup_and_assemble(quiet);
         rich.replay_refinement(model.refinement_history, quiet);
         n_dofs = rich.n_dofs();
@@ -562,6 +563,7 @@ namespace squeal
       raised->mesh.fe_degree = degree + 1;
       auto rebuilt = std::make_unique<physics::StructuralModel>(*raised, comm);
       rebuilt->interface_mask = model->interface_mask;
+      rebuilt->varied         = model->varied;
       rebuilt->setup_and_assemble(quiet);
       rebuilt->replay_refinement(model->refinement_history, quiet);
       model      = std::move(rebuilt); // the old model first,
@@ -629,7 +631,7 @@ namespace squeal
       const auto in_band = [&](const double f) {
         return f > 1.02 * es.f_min && f < 0.98 * es.f_max;
       };
-      const parameters::ScalarPoint p0 = prm.sweep_points().front();
+      const parameters::ScalarPoint p0 = sweep_points().front();
       std::vector<double>           f_prev;
       std::vector<std::vector<std::complex<double>>> prev_shapes;
       std::vector<dealii::Point<3>>                  prev_points;

@@ -73,29 +73,22 @@ namespace squeal
       if (root)
         {
           std::ofstream csv(work_dir + "/eigenvalues.csv");
-          // The contract's columns, then any swept parameter beyond mu and
-          // the pad modulus.
-          std::vector<std::string> extra;
-          for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
-            if (axis->parameter != "pad modulus" &&
-                axis->parameter != "friction coefficient")
-              extra.push_back(axis->parameter);
-          csv << "point,mu,E_pad_Pa,mode,re_per_s,freq_Hz,zeta,unstable,track";
-          for (const auto &e : extra)
-            csv << ',' << parameters::column_name(e);
-          csv << '\n' << std::setprecision(12);
+          // the two swept parameters, named by the scene, then the modes
+          const auto &scene  = *model->scene;
+          const auto  first  = scene.parameter(prm.sweep.first.parameter);
+          const auto  second = scene.parameter(prm.sweep.second.parameter);
+          csv << "point," << first.column() << ',' << second.column()
+              << ",mode,re_per_s,freq_Hz,zeta,unstable,track\n"
+              << std::setprecision(12);
           std::ofstream res(work_dir + "/eigenvalue_residuals.csv");
           res << "point,mode,relative_residual\n" << std::setprecision(6);
           for (const auto &m : modes)
             {
-              csv << m.point << ',' << m.values.mu << ',' << m.values.E_pad
-                  << ',' << m.mode << ',' << m.lambda.real() << ','
-                  << m.lambda.imag() / (2 * M_PI) << ','
-                  << -m.lambda.real() / std::abs(m.lambda) << ','
-                  << (m.unstable ? 1 : 0) << ',' << m.track;
-              for (const auto &e : extra)
-                csv << ',' << m.values.get(e);
-              csv << '\n';
+              csv << m.point << ',' << m.values.get(first.name) << ','
+                  << m.values.get(second.name) << ',' << m.mode << ','
+                  << m.lambda.real() << ',' << m.lambda.imag() / (2 * M_PI)
+                  << ',' << -m.lambda.real() / std::abs(m.lambda) << ','
+                  << (m.unstable ? 1 : 0) << ',' << m.track << '\n';
               res << m.point << ',' << m.mode << ',' << m.residual << '\n';
             }
           std::ofstream axes(work_dir + "/sweep_axes.csv");
@@ -103,14 +96,12 @@ namespace squeal
           for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
             axes << (axis == &prm.sweep.first ? "first," : "second,")
                  << axis->parameter << ','
-                 << parameters::column_name(axis->parameter) << ','
+                 << scene.parameter(axis->parameter).column() << ','
                  << (axis->log_scale() ? 1 : 0) << '\n';
           std::ofstream reg(work_dir + "/unstable_regions.csv");
-          // mu,E_pad_min_Pa,E_pad_max_Pa,... for the default sweep
-          const auto &f = prm.sweep.first.parameter;
-          reg << parameters::column_name(prm.sweep.second.parameter) << ','
-              << parameters::column_name(f, "_min") << ','
-              << parameters::column_name(f, "_max")
+          // e.g. pad_on_disc.mu,pad.E_min_Pa,pad.E_max_Pa,...
+          reg << second.column() << ',' << first.column("_min") << ','
+              << first.column("_max")
               << ",freq_min_Hz,freq_max_Hz,max_re_per_s,track\n"
               << std::setprecision(12);
           for (const auto &r : regions)
@@ -120,7 +111,8 @@ namespace squeal
           if (!check_rows.empty())
             {
               std::ofstream chk(work_dir + "/check_full.csv");
-              chk << "point,mu,E_pad_Pa,full_re_per_s,full_freq_Hz,"
+              chk << "point," << first.column() << ',' << second.column()
+                  << ",full_re_per_s,full_freq_Hz,"
                      "reduced_re_per_s,reduced_freq_Hz,freq_rel_error,"
                      "re_error_per_abs_re_plus_1\n";
               for (const auto &r : check_rows)

@@ -38,7 +38,9 @@ namespace squeal
       , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
       , timer(pcout, TimerOutput::summary, TimerOutput::wall_times)
       , model(prm, comm)
-    {}
+    {
+      model.varied = std::set<std::string>(); // one point: nothing varies
+    }
 
     void
     PreloadAnalysis::setup_system()
@@ -76,14 +78,15 @@ namespace squeal
       TimerOutput::Scope t(timer, "contact solve");
       mortar = contact::scene_mortar(model, prm.preload.search_distance, pcout);
       ContactSettings s;
-      s.friction             = prm.preload.friction == "coulomb" ?
-                                 FrictionModel::coulomb :
-                               prm.preload.friction == "steady sliding" ?
-                                 FrictionModel::steady_sliding :
-                                 FrictionModel::frictionless;
-      s.friction_coefficient = prm.interface.friction_coefficient;
-      s.sliding_direction    = contact::common_sliding(*model.scene);
-      s.master_slip          = prm.preload.disc_slip * s.sliding_direction;
+      s.friction = prm.preload.friction == "coulomb" ?
+                     FrictionModel::coulomb :
+                   prm.preload.friction == "steady sliding" ?
+                     FrictionModel::steady_sliding :
+                     FrictionModel::frictionless;
+      s.friction_coefficient =
+        model.scene->common_friction_coefficient(model.scene->nominal_point());
+      s.sliding_direction = contact::common_sliding(*model.scene);
+      s.master_slip       = prm.preload.disc_slip * s.sliding_direction;
       std::ostream *log =
         Utilities::MPI::this_mpi_process(comm) == 0 ? &std::cout : nullptr;
       // The normal force in Load steps increments; each step starts from the
@@ -136,7 +139,9 @@ namespace squeal
       for (const auto i : model.locally_owned_dofs)
         u[i] = state.displacement[i];
       u.compress(VectorOperation::insert);
-      model.stiffness_springs.vmult(r, u);
+      physics::PETScMatrix springs;
+      model.parts().springs(model.scene->nominal_point(), springs);
+      springs.vmult(r, u);
       const Tensor<1, 3> slide = contact::common_sliding(*model.scene);
       const std::vector<unsigned int> component =
         physics::dof_support_points(model).second;
@@ -144,9 +149,6 @@ namespace squeal
       for (const auto i : model.locally_owned_dofs)
         spring_reaction += r[i] * slide[component[i]];
       spring_reaction = Utilities::MPI::sum(spring_reaction, comm);
-      // The k_ref scaling: the parts hold springs at the reference value.
-      spring_reaction *= prm.nominal_point().spring_stiffness /
-                         model.parts().reference.spring_stiffness;
 
       double max_p = 0.;
       for (unsigned int j = 0; j < mortar.n_slave(); ++j)

@@ -109,7 +109,9 @@ namespace squeal
     {
       // The one-line summary of a valid file.
       void
-      print_summary(const CommandLine &cl, const parameters::AllParameters &prm)
+      print_summary(const CommandLine               &cl,
+                    const parameters::AllParameters &prm,
+                    const scene::Scene              &scene)
       {
         std::cout << cl.file << ": valid (scene " << prm.scene.type << ", "
                   << prm.scene.analysis;
@@ -118,7 +120,8 @@ namespace squeal
                     << prm.transient.end_time << " s"
                     << (prm.transient.grid ?
                           ", a grid of " +
-                            std::to_string(prm.sweep_points().size()) +
+                            std::to_string(
+                              scene::sweep_points(scene, prm.sweep).size()) +
                             " runs" :
                           std::string());
         else if (prm.scene.analysis != "preload")
@@ -127,6 +130,11 @@ namespace squeal
         else
           std::cout << ", " << prm.preload.normal_force << " N";
         std::cout << ", output to " << prm.output.directory << ")" << std::endl;
+        std::cout << "Named parameters (Sweep/First and Second parameter):";
+        for (const auto &p : scene.parameters())
+          std::cout << "\n  " << p.name << " = " << p.value
+                    << (p.unit.empty() ? "" : " " + p.unit);
+        std::cout << std::endl;
       }
     } // namespace
 
@@ -141,6 +149,10 @@ namespace squeal
                                 prm.scene.analysis,
                                 prm.scene.analysis == "braking" &&
                                   prm.transient.initial_perturbation > 0.);
+      // the sweep's parameter names and ranges against the scene
+      if (prm.scene.analysis != "preload" &&
+          (prm.scene.analysis != "braking" || prm.transient.grid))
+        scene::sweep_points(*scene, prm.sweep);
       if (!cl.export_mesh.empty())
         {
           if (fs::exists(cl.export_mesh) && !cl.overwrite)
@@ -164,7 +176,7 @@ namespace squeal
           return;
         }
       if (root)
-        print_summary(cl, prm);
+        print_summary(cl, prm, *scene);
     }
 
     namespace
@@ -197,6 +209,10 @@ namespace squeal
                  const bool                       resume,
                  MPI_Comm                         comm)
     {
+      // the sweep against the scene's named parameters, before any output
+      if (prm.scene.analysis != "preload" &&
+          (prm.scene.analysis != "braking" || prm.transient.grid))
+        scene::sweep_points(*scene::make_scene(prm), prm.sweep);
       std::string failure;
       if (prm.scene.analysis == "braking" && prm.transient.grid)
         {

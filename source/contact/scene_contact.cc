@@ -83,11 +83,11 @@ namespace squeal
                    SparseMatrix<double>           &stiffness,
                    AffineConstraints<double>      &constraints)
     {
-      const auto &prm = model.prm;
       // K_s at the nominal point, as a deal.II matrix.
       const physics::MatrixParts parts = model.parts();
       physics::PETScMatrix       K;
-      parts.combine(parts.coefficients(prm.nominal_point()).structural, K);
+      parts.combine(parts.coefficients(model.scene->nominal_point()).structural,
+                    K);
       physics::copy_to_serial(K, pattern, stiffness);
 
       constraints.copy_from(model.constraints);
@@ -124,9 +124,8 @@ namespace squeal
                    AffineConstraints<double>      &constraints,
                    MPI_Comm                        comm)
     {
-      const auto                &prm   = model.prm;
       const physics::MatrixParts parts = model.parts();
-      parts.combine(parts.coefficients(prm.nominal_point()).structural,
+      parts.combine(parts.coefficients(model.scene->nominal_point()).structural,
                     stiffness);
       const unsigned int n = model.n_dofs();
       // Constraints on all DoFs, identical on every rank (the model's hold

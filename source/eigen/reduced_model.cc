@@ -35,6 +35,7 @@ namespace squeal
   namespace eigen
   {
     using namespace dealii;
+    using Kind = physics::MatrixParts::Kind;
 
     namespace
     {
@@ -115,11 +116,16 @@ namespace squeal
     ReducedModel::make_reference_mass(const physics::MatrixParts &model)
     {
       parts = model;
-      comm  = model.matrix[0]->get_mpi_communicator();
-      owned = model.matrix[0]->locally_owned_range_indices();
+      comm  = model.matrix(0).get_mpi_communicator();
+      owned = model.matrix(0).locally_owned_range_indices();
       model.mass(model.reference, M_ref);
+      const unsigned int n_parts = model.size();
+      active.assign(n_parts, false);
       for (unsigned int k = 0; k < n_parts; ++k)
-        active[k] = model.matrix[k]->frobenius_norm() > 0.;
+        active[k] = model.matrix(k).frobenius_norm() > 0.;
+      Ar.assign(n_parts, Eigen::MatrixXd());
+      W.assign(n_parts, Eigen::MatrixXd());
+      G.assign(n_parts, std::vector<Eigen::MatrixXd>(n_parts));
     }
 
     void
@@ -133,6 +139,10 @@ namespace squeal
       make_reference_mass(model);
       std::vector<Eigen::VectorXd> columns;
       BandOptions                  sample_band = band;
+      // every pair's K_n and K_t (at their reference stiffness)
+      PETScMatrix K_n, K_t;
+      const bool  has_normal  = model.sum(Kind::interface_normal, K_n),
+                 has_friction = model.sum(Kind::interface_friction, K_t);
       for (unsigned int i = 0; i < samples.size(); ++i)
         {
           const auto &s = samples[i];
@@ -140,11 +150,7 @@ namespace squeal
           model.symmetric_stiffness(s, K);
           model.mass(s, M);
           pcout << "  reduced basis: sample " << i + 1 << " of "
-                << samples.size() << " (pad modulus " << s.E_pad
-                << " Pa, interface stiffness " << s.interface_stiffness
-                << " N/m^3, spring stiffness " << s.spring_stiffness
-                << " N/m, support density " << s.support_density << " kg/m^3)"
-                << std::endl;
+                << samples.size() << std::endl;
           const auto modes =
             solve_undamped(M, K, sample_band, band_factor, true, pcout);
           // the next sample has about as many modes: ask for them at once
@@ -153,6 +159,7 @@ namespace squeal
           std::unique_ptr<DirectSolver> solver;
           if (enrichment_depth > 0)
             solver = std::make_unique<DirectSolver>(K);
+
           PETScVector force(owned, comm), response(owned, comm);
           for (const auto &mode : modes)
             {
@@ -162,8 +169,10 @@ namespace squeal
                   // Rayleigh damping beta K_s is not proportional to
                   // K_s + K_n: the static response to the interface forces
                   // K^-1 K_n phi corrects the damped shapes.
-                  model.matrix[physics::MatrixParts::interface_normal]->vmult(
-                    force, mode.re);
+                  if (has_normal)
+                    K_n.vmult(force, mode.re);
+                  else
+                    force = 0.;
                   const double norm = force.l2_norm();
                   if (norm > 0)
                     {
@@ -175,7 +184,9 @@ namespace squeal
               PETScVector x = mode.re;
               for (unsigned int level = 0; level < enrichment_depth; ++level)
                 {
-                  model.friction().vmult(force, x);
+                  if (!has_friction)
+                    break;
+                  K_t.vmult(force, x);
                   const double norm = force.l2_norm();
                   if (norm == 0)
                     break;
@@ -251,14 +262,15 @@ namespace squeal
       sum_over_ranks(gram, comm);
       Eigen::MatrixXd Nn = B * orthonormalising_transform(gram);
 
-      const int r = V.cols(), q = Nn.cols();
-      has_residuals = false; // the Gram matrices are not extended
+      const int          r = V.cols(), q = Nn.cols();
+      const unsigned int n_parts = active.size();
+      has_residuals              = false; // the Gram matrices are not extended
       for (unsigned int k = 0; k < n_parts; ++k)
         if (!active[k])
           Ar[k] = Eigen::MatrixXd::Zero(r + q, r + q);
         else
           {
-            Eigen::MatrixXd WN     = multiply(*model.matrix[k], Nn);
+            Eigen::MatrixXd WN     = multiply(model.matrix(k), Nn);
             Eigen::MatrixXd top    = V.transpose() * WN,
                             left   = Nn.transpose() * W[k],
                             corner = Nn.transpose() * WN;
@@ -290,9 +302,10 @@ namespace squeal
         sum_over_ranks(gram, comm);
         V = B * orthonormalising_transform(gram);
       }
+      const unsigned int n_parts = active.size();
       for (unsigned int k = 0; k < n_parts; ++k)
         if (active[k])
-          W[k] = multiply(*model.matrix[k], V);
+          W[k] = multiply(model.matrix(k), V);
         else
           W[k].resize(0, 0);
 
@@ -363,9 +376,13 @@ namespace squeal
       model.mass(point, M);
       model.stiffness(point, K);
       model.damping(point, C);
-      const bool symmetric = point.mu == 0. ||
-                             point.interface_stiffness == 0. ||
-                             model.friction().frobenius_norm() == 0.;
+      // symmetric when no friction part enters K at this point
+      const auto c         = model.coefficients(point);
+      bool       symmetric = true;
+      for (unsigned int k = 0; k < model.size(); ++k)
+        if (model.parts[k].kind == Kind::interface_friction &&
+            c.stiffness[k] != 0. && model.matrix(k).frobenius_norm() > 0.)
+          symmetric = false;
       const auto modes = solve_undamped(M, K, band, 1.5, symmetric, pcout);
       std::vector<PETScVector> vectors;
       for (const auto &m : modes)
@@ -433,8 +450,9 @@ namespace squeal
                         const double                   f_min,
                         const double                   f_max) const
     {
-      const int  r       = V.cols();
-      const auto c       = parts.coefficients(point);
+      const int          r       = V.cols();
+      const unsigned int n_parts = active.size();
+      const auto         c       = parts.coefficients(point);
       const auto combine = [&](const physics::MatrixParts::Coefficients &a) {
         Eigen::MatrixXd A = Eigen::MatrixXd::Zero(r, r);
         for (unsigned int k = 0; k < n_parts; ++k)
@@ -509,7 +527,10 @@ namespace squeal
               Qr.col(j) = pairs[j].q.real();
               Qi.col(j) = pairs[j].q.imag();
             }
-          std::vector<std::array<std::array<Complex, n_parts>, n_parts>> h(m);
+          std::vector<std::vector<std::vector<Complex>>> h(
+            m,
+            std::vector<std::vector<Complex>>(n_parts,
+                                              std::vector<Complex>(n_parts)));
           for (unsigned int k = 0; k < n_parts; ++k)
             for (unsigned int l = k; l < n_parts; ++l)
               if (active[k] && active[l])
@@ -525,10 +546,10 @@ namespace squeal
                       h[j][l][k] = std::conj(h[j][k][l]);
                     }
                 }
-          using Vector = std::array<Complex, n_parts>;
+          using Vector = std::vector<Complex>;
           const auto as_complex =
-            [](const physics::MatrixParts::Coefficients &a) {
-              Vector z;
+            [n_parts](const physics::MatrixParts::Coefficients &a) {
+              Vector z(n_parts);
               for (unsigned int k = 0; k < n_parts; ++k)
                 z[k] = a[k];
               return z;
@@ -546,7 +567,7 @@ namespace squeal
                 return std::sqrt(std::max(0., sum.real()));
               };
               const Complex lambda = pairs[j].lambda;
-              Vector        total;
+              Vector        total(n_parts);
               for (unsigned int k = 0; k < n_parts; ++k)
                 total[k] = lambda * lambda * mass[k] + lambda * damping[k] +
                            stiffness[k];

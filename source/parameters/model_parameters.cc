@@ -69,7 +69,7 @@ namespace squeal
       declare_material(prm,
                        "Pad",
                        pad,
-                       " Reference value; a sweep rescales the pad stiffness.");
+                       " Nominal value of the named parameter pad.E.");
       declare_material(prm,
                        "Support",
                        support,
@@ -210,8 +210,9 @@ namespace squeal
       prm.declare_entry("Friction coefficient",
                         str(friction_coefficient),
                         Patterns::Double(0., 10.),
-                        "Coulomb friction coefficient [-] of every sweep "
-                        "point when the sweep does not vary it.");
+                        "Coulomb friction coefficient [-] of every contact "
+                        "pair that does not give its own (named parameter "
+                        "<pair>.mu).");
       prm.declare_entry("Sliding direction",
                         sliding_direction,
                         Patterns::Anything(),

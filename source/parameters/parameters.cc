@@ -1,9 +1,8 @@
 // The whole parameter set: every subsection declared and parsed in turn, the
-// Output subsection, the nominal point and the sweep's points, and reading a
-// file with its INCLUDEs. Each subsection is a struct whose defaults are the
-// values in the header, so the defaults live in one place; the .cc files
-// give them ranges and help texts with SI units, and check the few rules
-// that join several parameters.
+// Output subsection, and reading a file with its INCLUDEs. Each subsection is a
+// struct whose defaults are the values in the header, so the defaults live in
+// one place; the .cc files give them ranges and help texts with SI units, and
+// check the few rules that join several parameters.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
@@ -101,47 +100,6 @@ namespace squeal
               scene.analysis +
               "); without a preload set it to 0 and refine the disc track "
               "by geometry with Mesh/Disc refinements under pad");
-    }
-
-    ScalarPoint
-    AllParameters::nominal_point() const
-    {
-      ScalarPoint p;
-      p.E_pad               = materials.pad.youngs_modulus;
-      p.mu                  = interface.friction_coefficient;
-      p.interface_stiffness = interface.normal_stiffness;
-      p.spring_stiffness    = springs.stiffness;
-      p.support_density     = materials.support.density;
-      p.alpha               = damping.alpha;
-      p.beta                = damping.beta;
-      return p;
-    }
-
-    void
-    AllParameters::set_nominal_point(const ScalarPoint &p)
-    {
-      materials.pad.youngs_modulus   = p.E_pad;
-      interface.friction_coefficient = p.mu;
-      interface.normal_stiffness     = p.interface_stiffness;
-      springs.stiffness              = p.spring_stiffness;
-      materials.support.density      = p.support_density;
-      damping.alpha                  = p.alpha;
-      damping.beta                   = p.beta;
-    }
-
-    std::vector<ScalarPoint>
-    AllParameters::sweep_points() const
-    {
-      std::vector<ScalarPoint> points;
-      for (const double s : sweep.second.values)
-        for (const double f : sweep.first.values)
-          {
-            ScalarPoint p = nominal_point();
-            p.set(sweep.second.parameter, s);
-            p.set(sweep.first.parameter, f);
-            points.push_back(p);
-          }
-      return points;
     }
 
     void

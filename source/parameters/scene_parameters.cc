@@ -53,23 +53,28 @@ namespace squeal
         "axis 3), frame = cartesian (axis1, axis2: the material axes 1 and 2, "
         "default 1 0 0 and 0 1 0) | cylindrical (axes radial, tangential, "
         "axial about axis through centre), "
-        "type = other | disc | pad | support (pad: the sweep parameter "
-        "'pad modulus' sets its E, or scales an anisotropic law by itself "
-        "over E1 or E; support: 'support density' sets its rho; "
-        "disc: its modes are named (n,m+-)), and for a disc: face (the face "
+        "alpha [1/s], beta [s] (the body's own Rayleigh damping, "
+        "C_body = alpha M_body + beta K_body; default Damping/Alpha and "
+        "Beta), type = other | disc (disc: its modes are named (n,m+-)), "
+        "and for a disc: face (the face "
         "set whose axial motion names the modes, required), axis (default "
         "0 0 1), centre [m] (default 0 0 0), manifold = none | cylindrical "
         "(refinement and the mapping follow the circle about the axis). "
-        "Every cell must belong to exactly one body.");
+        "Every cell must belong to exactly one body. The body's named "
+        "parameters (Sweep): <name>.E (for an anisotropic law, a factor "
+        "E / E1 or E / E on its whole tensor), <name>.rho, and with its own "
+        "damping <name>.alpha and <name>.beta.");
       prm.declare_entry(
         "Contact pairs",
         contact_pairs,
         Patterns::Anything(),
-        "name: slave=<face set>, master=<face set>[, sliding=tx ty tz]; the "
+        "name: slave=<face set>, master=<face set>[, sliding=tx ty tz, "
+        "mu=<friction coefficient>, k_n=<N/m^3>]; the "
         "slave face set must be plane (the pad's friction face), the master "
         "(the disc's face) in reach of it. Without sliding, the master turns "
-        "about the disc's axis in Interface/Rotation sense. Friction "
-        "coefficient and stiffness: subsection Interface.");
+        "about the disc's axis in Interface/Rotation sense. mu and k_n "
+        "default to Interface/Friction coefficient and Normal stiffness; "
+        "named parameters <name>.mu and <name>.k_n.");
       prm.declare_entry("Holds",
                         holds,
                         Patterns::Anything(),
@@ -93,10 +98,11 @@ namespace squeal
         springs,
         Patterns::Anything(),
         "name: body=<body>, direction=dx dy dz, points=x y z | x y z | ... "
-        "or nodes=<node set>[, radius=a [m]]: springs to ground of "
-        "Springs/Stiffness each, on the body's boundary faces through the "
-        "points, each spread over radius a (default Springs/Attachment "
-        "radius; 0: the nearest node).");
+        "or nodes=<node set>[, radius=a [m], k=<N/m>]: springs to ground of "
+        "stiffness k each (default Springs/Stiffness), on the body's "
+        "boundary faces through the points, each spread over radius a "
+        "(default Springs/Attachment radius; 0: the nearest node). Named "
+        "parameter <name>.k.");
       prm.declare_entry("Probes",
                         probes,
                         Patterns::Anything(),

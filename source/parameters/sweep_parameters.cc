@@ -22,80 +22,53 @@ namespace squeal
   {
     using namespace dealii;
     using internal::check;
-    using internal::positive;
     using internal::str;
-    namespace
-    {
-      double &
-      member(ScalarPoint &p, const std::string &name)
-      {
-        static const std::vector<std::pair<std::string, double ScalarPoint::*>>
-          members = {{"pad modulus", &ScalarPoint::E_pad},
-                     {"friction coefficient", &ScalarPoint::mu},
-                     {"interface stiffness", &ScalarPoint::interface_stiffness},
-                     {"spring stiffness", &ScalarPoint::spring_stiffness},
-                     {"support density", &ScalarPoint::support_density},
-                     {"rayleigh alpha", &ScalarPoint::alpha},
-                     {"rayleigh beta", &ScalarPoint::beta}};
-        for (const auto &[n, m] : members)
-          if (n == name)
-            return p.*m;
-        sweepable_parameter(name); // throws with the allowed names
-        throw std::logic_error("unreachable");
-      }
-
-      std::string
-      sweepable_names()
-      {
-        std::string names;
-        for (const auto &p : sweepable_parameters())
-          names += (names.empty() ? "" : "|") + std::string(p.name);
-        return names;
-      }
-    } // namespace
-
     double
     ScalarPoint::get(const std::string &name) const
     {
-      return member(const_cast<ScalarPoint &>(*this), name);
+      for (const auto &[n, v] : named)
+        if (n == name)
+          return v;
+      throw std::runtime_error("unknown parameter '" + name +
+                               "'; this scene's parameters are " + names());
     }
 
     void
     ScalarPoint::set(const std::string &name, const double value)
     {
-      member(*this, name) = value;
+      for (auto &[n, v] : named)
+        if (n == name)
+          {
+            v = value;
+            return;
+          }
+      get(name); // throws with the names
     }
 
-    const std::vector<SweepableParameter> &
-    sweepable_parameters()
+    void
+    ScalarPoint::add(const std::string &name, const double value)
     {
-      static const std::vector<SweepableParameter> list = {
-        {"pad modulus", "E_pad", "Pa", 0., true, true},
-        {"friction coefficient", "mu", "", 0., false, false},
-        {"interface stiffness", "k_n", "N_per_m3", 0., false, true},
-        {"spring stiffness", "k_spring", "N_per_m", 0., false, true},
-        {"support density", "rho_support", "kg_per_m3", 0., true, true},
-        {"rayleigh alpha", "alpha", "per_s", 0., false, false},
-        {"rayleigh beta", "beta", "s", 0., false, false}};
-      return list;
+      if (has(name))
+        throw std::runtime_error("two parameters are called '" + name +
+                                 "'; give the scene's items different names");
+      named.emplace_back(name, value);
     }
 
-    const SweepableParameter &
-    sweepable_parameter(const std::string &name)
+    bool
+    ScalarPoint::has(const std::string &name) const
     {
-      for (const auto &p : sweepable_parameters())
-        if (name == p.name)
-          return p;
-      throw std::runtime_error("unknown sweep parameter '" + name +
-                               "'; allowed: " + sweepable_names());
+      return std::any_of(named.begin(), named.end(), [&](const auto &nv) {
+        return nv.first == name;
+      });
     }
 
     std::string
-    column_name(const std::string &name, const std::string &qualifier)
+    ScalarPoint::names() const
     {
-      const auto &p = sweepable_parameter(name);
-      return std::string(p.symbol) + qualifier +
-             (p.unit[0] ? "_" + std::string(p.unit) : std::string());
+      std::string list;
+      for (const auto &nv : named)
+        list += (list.empty() ? "" : "|") + nv.first;
+      return list.empty() ? "(none)" : list;
     }
 
     void
@@ -104,7 +77,6 @@ namespace squeal
       const std::string forms =
         "; allowed: 'log A B N' (N log-spaced values from A to B > 0), "
         "'linear A B N' or a comma-separated list of values";
-      const auto        &info = sweepable_parameter(parameter);
       std::istringstream words(values_text);
       std::string        kind;
       words >> kind;
@@ -151,11 +123,7 @@ namespace squeal
         throw std::runtime_error("invalid parameter: " + entry + " is empty" +
                                  forms);
       for (const double v : values)
-        check(std::isfinite(v) &&
-                (info.low_open ? v > info.lowest : v >= info.lowest),
-              entry + ": " + str(v) + " is out of range for the " + info.name +
-                " (must be " + (info.low_open ? "> " : ">= ") +
-                str(info.lowest) + ")");
+        check(std::isfinite(v), entry + ": " + str(v) + " is not finite");
     }
 
     bool
@@ -174,19 +142,24 @@ namespace squeal
         "'linear A B N' (N evenly spaced), or a comma-separated list.";
       prm.declare_entry("First parameter",
                         first.parameter,
-                        Patterns::Selection(sweepable_names()),
+                        Patterns::Anything(),
                         "The parameter along which modes are tracked and "
                         "unstable regions are intervals (the x axis of the "
-                        "plots). Units: pad modulus Pa, interface stiffness "
-                        "N/m^3, spring stiffness N/m, support density kg/m^3, "
-                        "Rayleigh alpha 1/s, Rayleigh beta s.");
+                        "plots): a name of the scene's parameters, "
+                        "'<body>.E' (Young's modulus, Pa), '<body>.rho' "
+                        "(density, kg/m^3), '<pair>.mu' (friction "
+                        "coefficient), '<pair>.k_n' (interface stiffness, "
+                        "N/m^3), '<springs>.k' (N/m per spring), "
+                        "'damping.alpha' (1/s), 'damping.beta' (s), "
+                        "'<body>.alpha', '<body>.beta' (a body with its own "
+                        "Rayleigh damping). squeal --validate lists them.");
       prm.declare_entry("First values",
                         first.values_text,
                         Patterns::Anything(),
                         "Values of the first parameter, SI units." + forms);
       prm.declare_entry("Second parameter",
                         second.parameter,
-                        Patterns::Selection(sweepable_names()),
+                        Patterns::Anything(),
                         "The parameter of which each value gets its own "
                         "tracked sweep of the first (one curve family of the "
                         "plots).");

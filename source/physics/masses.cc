@@ -73,7 +73,7 @@ namespace squeal
     }
 
     void
-    StructuralModel::add_masses(ConditionalOStream &pcout)
+    StructuralModel::add_masses(PETScMatrix &M, ConditionalOStream &pcout)
     {
       if (scene->masses.empty())
         return;
@@ -114,9 +114,7 @@ namespace squeal
                                                 fv.shape_value(j, q) *
                                                 fv.JxW(q);
                         cell->get_dof_indices(dofs);
-                        constraints.distribute_local_to_global(cell_m,
-                                                               dofs,
-                                                               mass);
+                        constraints.distribute_local_to_global(cell_m, dofs, M);
                       }
               continue;
             }
@@ -171,10 +169,10 @@ namespace squeal
           pm.body = static_cast<types::material_id>(all[3]);
           for (const auto d : pm.dofs)
             if (locally_owned_dofs.is_element(d))
-              mass.add(d, d, m.mass);
+              M.add(d, d, m.mass);
           point_masses.push_back(pm);
         }
-      mass.compress(VectorOperation::add);
+      M.compress(VectorOperation::add);
       pcout << "Masses: " << scene->masses.size() << " lumped, " << total
             << " kg in all" << std::endl;
     }

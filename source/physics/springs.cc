@@ -20,6 +20,8 @@ namespace squeal
 
     void
     StructuralModel::add_springs(const scene::SpringSet &s,
+                                 PETScMatrix            &K,
+                                 const double            k,
                                  ConditionalOStream     &pcout)
     {
       const std::vector<Point<3>> &stations = s.stations;
@@ -42,7 +44,7 @@ namespace squeal
         const std::vector<double> local = total;
         Utilities::MPI::sum(local, comm, total);
       }
-      assemble_spread_springs(s, rules, total);
+      assemble_spread_springs(s, rules, total, K, k);
       const bool any_point =
         std::find(total.begin(), total.end(), 0.) != total.end();
       if (any_point && acting.size() != 1)
@@ -52,10 +54,10 @@ namespace squeal
           "attachment radius, and a spring at one node needs a direction "
           "along a coordinate axis; give a radius that reaches the faces");
       const auto [worst, n_point] =
-        any_point ? add_nearest_node_springs(s, total, acting[0]) :
+        any_point ? add_nearest_node_springs(s, total, acting[0], K, k) :
                     std::pair<double, unsigned int>(0., 0u);
       const double a = s.radius;
-      stiffness_springs.compress(VectorOperation::add);
+      K.compress(VectorOperation::add);
       // faces per spread spring (a report, not an input)
       std::vector<unsigned int> counts(stations.size());
       Utilities::MPI::sum(faces_per_spring, comm, counts);
@@ -215,7 +217,9 @@ namespace squeal
     StructuralModel::assemble_spread_springs(
       const scene::SpringSet            &s,
       const std::vector<SpringFaceRule> &rules,
-      const std::vector<double>         &total)
+      const std::vector<double>         &total,
+      PETScMatrix                       &K,
+      const double                       k)
     {
       const unsigned int                   n = fe.n_dofs_per_cell();
       FullMatrix<double>                   cell_k(n, n);
@@ -229,7 +233,7 @@ namespace squeal
             {
               double c = 0.;
               for (const auto &[i, w] : rule.weights[q])
-                c += reference.spring_stiffness * w / total[i];
+                c += k * w / total[i];
               for (unsigned int k = 0; k < phi.size(); ++k)
                 {
                   const unsigned int comp =
@@ -246,9 +250,7 @@ namespace squeal
           if (!rule.unit.empty())
             {
               rule.cell->get_dof_indices(dofs);
-              constraints.distribute_local_to_global(cell_k,
-                                                     dofs,
-                                                     stiffness_springs);
+              constraints.distribute_local_to_global(cell_k, dofs, K);
             }
         }
     }
@@ -260,7 +262,9 @@ namespace squeal
     std::pair<double, unsigned int>
     StructuralModel::add_nearest_node_springs(const scene::SpringSet    &s,
                                               const std::vector<double> &total,
-                                              const unsigned int component)
+                                              const unsigned int component,
+                                              PETScMatrix       &K,
+                                              const double       k)
     {
       const std::vector<Point<3>>         &stations = s.stations;
       const unsigned int                   n        = fe.n_dofs_per_cell();
@@ -305,11 +309,9 @@ namespace squeal
               comm);
             worst = std::max(worst, d);
             if (locally_owned_dofs.is_element(dof))
-              stiffness_springs.add(dof,
-                                    dof,
-                                    reference.spring_stiffness *
-                                      s.direction[component] *
-                                      s.direction[component]);
+              K.add(dof,
+                    dof,
+                    k * s.direction[component] * s.direction[component]);
           }
       return {worst, n_point};
     }

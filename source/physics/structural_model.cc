@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 
 namespace squeal
@@ -212,7 +213,10 @@ namespace squeal
     void
     StructuralModel::setup_and_assemble(ConditionalOStream &pcout)
     {
-      scene = scene::make_scene(prm);
+      auto made = scene::make_scene(prm);
+      for (const auto &[name, value] : nominal_overrides)
+        made->set_nominal(name, value);
+      scene = std::move(made);
       scene->make_mesh(triangulation);
       setup_dofs_and_assemble(pcout);
     }
@@ -363,77 +367,119 @@ namespace squeal
             interface_points.swap(kept);
           }
 
-      DynamicSparsityPattern dsp(locally_relevant_dofs);
-      DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+      pattern = std::make_unique<DynamicSparsityPattern>(locally_relevant_dofs);
+      DoFTools::make_sparsity_pattern(dof_handler,
+                                      *pattern,
+                                      constraints,
+                                      false);
       for (const auto &interface_points : pair_points)
-        add_interface_sparsity(interface_points, constraints, dsp);
-      SparsityTools::distribute_sparsity_pattern(dsp,
+        add_interface_sparsity(interface_points, constraints, *pattern);
+      SparsityTools::distribute_sparsity_pattern(*pattern,
                                                  locally_owned_dofs,
                                                  comm,
                                                  locally_relevant_dofs);
-      for (auto *m : {&mass,
-                      &mass_support,
-                      &stiffness_rest,
-                      &stiffness_pad,
-                      &stiffness_springs,
-                      &interface_normal,
-                      &interface_friction})
-        m->reinit(locally_owned_dofs, locally_owned_dofs, dsp, comm);
 
       pcout << "Mesh: " << triangulation.n_active_cells() << " cells, "
             << dof_handler.n_dofs() << " DoFs (degree " << prm.mesh.fe_degree
             << "), " << constraints.n_constraints() << " constrained"
             << std::endl;
 
-      // Reference values of the scaled parts: the file's, 1 where it is 0.
-      reference = prm.nominal_point();
-      for (double *v : {&reference.E_pad,
-                        &reference.support_density,
-                        &reference.spring_stiffness,
-                        &reference.interface_stiffness})
-        if (*v == 0.)
-          *v = 1.;
-      assemble_elasticity();
-      add_masses(pcout);
+      // The parts: the bodies' (common ones first: they carry the lumped
+      // masses and the constrained rows), each spring set's, each pair's
+      // K_n and K_t. A scaled part is assembled at the nominal value of its
+      // parameter (1 in its unit where that is 0).
+      const parameters::ScalarPoint nominal = scene->nominal_point();
+      const auto reference_of               = [&](const std::string &name) {
+        const double v = nominal.get(name);
+        return v == 0. ? 1. : v;
+      };
+      MatrixParts parts;
+      parts.reference = nominal;
+      next_part       = 0;
+      const auto [fixed_mass, fixed_stiffness] =
+        assemble_elasticity(nominal, parts);
+      add_masses(*part_matrices[fixed_mass], pcout);
       for (const scene::SpringSet &springs : scene->springs)
-        add_springs(springs, pcout);
+        {
+          const std::string k = springs.name + ".k";
+          PETScMatrix      &K = new_part_matrix();
+          add_springs(springs, K, reference_of(k), pcout);
+          parts.parts.push_back({&K,
+                                 MatrixParts::Kind::stiffness,
+                                 "springs " + springs.name,
+                                 k,
+                                 reference_of(k),
+                                 "",
+                                 "damping.beta",
+                                 true});
+        }
       for (unsigned int i = 0; i < pair_points.size(); ++i)
-        assemble_interface(pair_points[i],
-                           constraints,
-                           reference.interface_stiffness,
-                           scene->contact_pairs[i],
-                           interface_normal,
-                           interface_friction);
-      interface_normal.compress(VectorOperation::add);
-      interface_friction.compress(VectorOperation::add);
+        {
+          const scene::ContactPair &pair = scene->contact_pairs[i];
+          const std::string         k_n  = pair.name + ".k_n";
+          PETScMatrix &Kn = new_part_matrix(), &Kt = new_part_matrix();
+          assemble_interface(
+            pair_points[i], constraints, reference_of(k_n), pair, Kn, Kt);
+          Kn.compress(VectorOperation::add);
+          Kt.compress(VectorOperation::add);
+          parts.parts.push_back({&Kn,
+                                 MatrixParts::Kind::interface_normal,
+                                 "normal interface " + pair.name,
+                                 k_n,
+                                 reference_of(k_n)});
+          parts.parts.push_back({&Kt,
+                                 MatrixParts::Kind::interface_friction,
+                                 "friction " + pair.name,
+                                 k_n,
+                                 reference_of(k_n),
+                                 pair.name + ".mu"});
+        }
+      part_matrices.resize(next_part);
+      pattern.reset();
 
       // Constrained rows: K_ii = d, M_ii = d / omega_s^2, all parts else 0;
-      // d from the disc and support elasticity alone, so that it does not
-      // depend on any swept parameter.
-      double trace = 0, n_free = 0;
-      for (const auto i : locally_owned_dofs)
-        if (!constraints.is_constrained(i))
-          {
-            trace += stiffness_rest.diag_element(i);
-            n_free += 1;
-          }
-      constrained_diagonal = Utilities::MPI::sum(trace, comm) /
-                             std::max(1., Utilities::MPI::sum(n_free, comm));
+      // d the mean diagonal over the free rows of the common stiffness part
+      // (the bodies no point changes), or of every body's at its nominal
+      // values if all vary: it depends on no point.
+      const auto mean_free_diagonal = [&](const bool common_only) {
+        double trace = 0, n_free = 0;
+        for (const auto i : locally_owned_dofs)
+          if (!constraints.is_constrained(i))
+            {
+              for (unsigned int k = 0; k < parts.size(); ++k)
+                if ((k == fixed_stiffness || !common_only) &&
+                    parts.parts[k].kind == MatrixParts::Kind::stiffness &&
+                    !parts.parts[k].springs)
+                  trace += parts.matrix(k).diag_element(i);
+              n_free += 1;
+            }
+        return Utilities::MPI::sum(trace, comm) /
+               std::max(1., Utilities::MPI::sum(n_free, comm));
+      };
+      constrained_diagonal = mean_free_diagonal(true);
+      if (!(constrained_diagonal > 0.))
+        constrained_diagonal = mean_free_diagonal(false);
       const double omega_s = 2. * numbers::PI * 1e3 * prm.eigensolver.f_max;
-      set_constrained_diagonal(constraints,
-                               locally_owned_dofs,
-                               constrained_diagonal,
-                               stiffness_rest);
-      set_constrained_diagonal(constraints,
-                               locally_owned_dofs,
-                               constrained_diagonal / (omega_s * omega_s),
-                               mass);
-      for (auto *m : {&mass_support,
-                      &stiffness_pad,
-                      &stiffness_springs,
-                      &interface_normal,
-                      &interface_friction})
-        set_constrained_diagonal(constraints, locally_owned_dofs, 0., *m);
+      for (unsigned int k = 0; k < parts.size(); ++k)
+        set_constrained_diagonal(constraints,
+                                 locally_owned_dofs,
+                                 k == fixed_stiffness ? constrained_diagonal :
+                                 k == fixed_mass      ? constrained_diagonal /
+                                                     (omega_s * omega_s) :
+                                                   0.,
+                                 *part_matrices[k]);
+      assembled = parts;
+    }
+
+    PETScMatrix &
+    StructuralModel::new_part_matrix()
+    {
+      // reused across refinements, so that earlier parts() stay valid
+      if (next_part == part_matrices.size())
+        part_matrices.push_back(std::make_unique<PETScMatrix>());
+      PETScMatrix &m = *part_matrices[next_part++];
+      m.reinit(locally_owned_dofs, locally_owned_dofs, *pattern, comm);
+      return m;
     }
 
     void
@@ -471,9 +517,70 @@ namespace squeal
         }
     }
 
-    void
-    StructuralModel::assemble_elasticity()
+    std::pair<unsigned int, unsigned int>
+    StructuralModel::assemble_elasticity(const parameters::ScalarPoint &nominal,
+                                         MatrixParts                   &parts)
     {
+      // Group the bodies: one mass part per (scaling density, alpha) and
+      // one stiffness part per (scaling modulus, beta); the common parts
+      // (no scale, the scene's damping) first.
+      const auto is_varied = [&](const std::string &name) {
+        return !varied || varied->count(name) > 0;
+      };
+      using Key = std::pair<std::string, std::string>; // scale, damping
+      std::vector<Key> mass_keys{{"", "damping.alpha"}},
+        stiffness_keys{{"", "damping.beta"}};
+      std::map<types::material_id, std::pair<unsigned int, unsigned int>>
+                 group_of; // body -> (mass key, stiffness key)
+      const auto index = [](std::vector<Key> &keys, const Key &key) {
+        const auto it = std::find(keys.begin(), keys.end(), key);
+        if (it != keys.end())
+          return static_cast<unsigned int>(it - keys.begin());
+        keys.push_back(key);
+        return static_cast<unsigned int>(keys.size() - 1);
+      };
+      for (const scene::Body &b : scene->bodies)
+        {
+          const std::string E = b.name + ".E", rho = b.name + ".rho";
+          const Key         mass_key{is_varied(rho) ? rho : "",
+                             b.own_damping ? b.name + ".alpha" :
+                                                     "damping.alpha"};
+          const Key stiffness_key{is_varied(E) ? E : "",
+                                  b.own_damping ? b.name + ".beta" :
+                                                  "damping.beta"};
+          if (!is_varied(E))
+            parts.fixed.emplace_back(E, nominal.get(E));
+          if (!is_varied(rho))
+            parts.fixed.emplace_back(rho, nominal.get(rho));
+          group_of[b.id] = {index(mass_keys, mass_key),
+                            index(stiffness_keys, stiffness_key)};
+        }
+      std::vector<PETScMatrix *> mass_parts, stiffness_parts;
+      for (const auto &[scale, damping] : mass_keys)
+        {
+          mass_parts.push_back(&new_part_matrix());
+          parts.parts.push_back(
+            {mass_parts.back(),
+             MatrixParts::Kind::mass,
+             scale.empty() ? "common mass" : "mass, " + scale,
+             scale,
+             scale.empty() ? 1. : nominal.get(scale),
+             "",
+             damping});
+        }
+      for (const auto &[scale, damping] : stiffness_keys)
+        {
+          stiffness_parts.push_back(&new_part_matrix());
+          parts.parts.push_back(
+            {stiffness_parts.back(),
+             MatrixParts::Kind::stiffness,
+             scale.empty() ? "common stiffness" : "stiffness, " + scale,
+             scale,
+             scale.empty() ? 1. : nominal.get(scale),
+             "",
+             damping});
+        }
+
       const QGauss<3>                      quadrature(fe.degree + 1);
       FEValues<3>                          fe_values(mapping,
                             fe,
@@ -488,12 +595,10 @@ namespace squeal
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            const scene::Body &body       = scene->body(cell->material_id());
-            const bool         is_pad     = body.modulus_swept;
-            const bool         is_support = body.density_swept;
-            const double       E  = scene->youngs_modulus(body.id, reference);
-            const double       nu = body.material.poisson_ratio;
-            const double       density = scene->density(body.id, reference);
+            const scene::Body &body = scene->body(cell->material_id());
+            const double       E    = scene->youngs_modulus(body.id, nominal);
+            const double       nu   = body.material.poisson_ratio;
+            const double       density = scene->density(body.id, nominal);
             const auto [lambda, mu]    = lame_constants(E, nu);
 
             fe_values.reinit(cell);
@@ -507,7 +612,7 @@ namespace squeal
                   C_q[q] =
                     scene->stiffness_tensor(body.id,
                                             fe_values.quadrature_point(q),
-                                            reference);
+                                            nominal);
                 add_cell_stiffness(fe_values, C_q, cell_k);
                 add_cell_elasticity(fe_values, 0., 0., density, cell_k, cell_m);
               }
@@ -515,35 +620,65 @@ namespace squeal
               add_cell_elasticity(
                 fe_values, lambda, mu, density, cell_k, cell_m);
             cell->get_dof_indices(dofs);
-            constraints.distribute_local_to_global(
-              cell_k, dofs, is_pad ? stiffness_pad : stiffness_rest);
-            constraints.distribute_local_to_global(
-              cell_m, dofs, is_support ? mass_support : mass);
+            const auto [m, k] = group_of.at(body.id);
+            constraints.distribute_local_to_global(cell_k,
+                                                   dofs,
+                                                   *stiffness_parts[k]);
+            constraints.distribute_local_to_global(cell_m,
+                                                   dofs,
+                                                   *mass_parts[m]);
           }
-      for (auto *m : {&mass, &mass_support, &stiffness_rest, &stiffness_pad})
+      for (auto *m : mass_parts)
         m->compress(VectorOperation::add);
+      for (auto *k : stiffness_parts)
+        k->compress(VectorOperation::add);
+      return {0u, static_cast<unsigned int>(mass_keys.size())};
     }
 
     MatrixParts::Combination
     MatrixParts::coefficients(const parameters::ScalarPoint &p) const
     {
-      const auto &r = reference;
-      Combination c;
-      c.mass = {{1., p.support_density / r.support_density, 0, 0, 0, 0, 0}};
-      c.structural          = {{0,
-                                0,
-                                1.,
-                                p.E_pad / r.E_pad,
-                                p.spring_stiffness / r.spring_stiffness,
-                                0,
-                                0}};
-      const double kn       = p.interface_stiffness / r.interface_stiffness;
-      c.symmetric_stiffness = c.structural;
-      c.symmetric_stiffness[interface_normal] = kn;
-      c.stiffness                             = c.symmetric_stiffness;
-      c.stiffness[interface_friction]         = kn * p.mu;
-      for (unsigned int k = 0; k < n_parts; ++k)
-        c.damping[k] = p.alpha * c.mass[k] + p.beta * c.structural[k];
+      for (const auto &[name, value] : fixed)
+        if (p.get(name) != value)
+          throw std::runtime_error(
+            "parameter " + name + " = " + std::to_string(p.get(name)) +
+            " differs from " + std::to_string(value) +
+            ", the value the model was assembled at: the model does not vary "
+            "it (list it in StructuralModel::varied)");
+      const std::size_t n = parts.size();
+      Combination       c{Coefficients(n, 0.),
+                    Coefficients(n, 0.),
+                    Coefficients(n, 0.),
+                    Coefficients(n, 0.),
+                    Coefficients(n, 0.),
+                    Coefficients(n, 0.)};
+      for (std::size_t k = 0; k < n; ++k)
+        {
+          const Part  &q = parts[k];
+          const double s =
+            (q.scale.empty() ? 1. : p.get(q.scale) / q.reference) *
+            (q.factor.empty() ? 1. : p.get(q.factor));
+          const double d = q.damping.empty() ? 0. : p.get(q.damping) * s;
+          switch (q.kind)
+            {
+              case Kind::mass:
+                c.mass[k]    = s;
+                c.damping[k] = d;
+                break;
+              case Kind::stiffness:
+                c.structural[k] = c.symmetric_stiffness[k] = c.stiffness[k] = s;
+                c.damping[k]                                                = d;
+                if (q.springs)
+                  c.springs[k] = s;
+                break;
+              case Kind::interface_normal:
+                c.symmetric_stiffness[k] = c.stiffness[k] = s;
+                break;
+              case Kind::interface_friction:
+                c.stiffness[k] = s;
+                break;
+            }
+        }
       return c;
     }
 
@@ -551,12 +686,31 @@ namespace squeal
     MatrixParts::combine(const Coefficients &c, PETScMatrix &result) const
     {
       // all parts share one sparsity pattern: copy one, add the others
-      result.reinit(*matrix[0]);
-      result.copy_from(*matrix[0]);
+      result.reinit(matrix(0));
+      result.copy_from(matrix(0));
       result *= c[0];
-      for (unsigned int k = 1; k < n_parts; ++k)
+      for (unsigned int k = 1; k < size(); ++k)
         if (c[k] != 0.)
-          result.add(c[k], *matrix[k]);
+          result.add(c[k], matrix(k));
+    }
+
+    bool
+    MatrixParts::sum(const Kind kind, PETScMatrix &result) const
+    {
+      Coefficients c(size(), 0.);
+      bool         any = false;
+      for (unsigned int k = 0; k < size(); ++k)
+        if (parts[k].kind == kind)
+          c[k] = 1., any = true;
+      if (any)
+        combine(c, result);
+      return any;
+    }
+
+    void
+    MatrixParts::springs(const parameters::ScalarPoint &p, PETScMatrix &K) const
+    {
+      combine(coefficients(p).springs, K);
     }
 
     void

@@ -134,11 +134,12 @@ namespace squeal
       read_bodies(const std::vector<Item> &body_items,
                   const io::NamedSets     &sets,
                   const std::vector<Triangulation<3>::cell_iterator> &cells,
-                  const std::string        &description,
-                  std::vector<Body>        &bodies,
-                  std::vector<std::string> &body_sets,
-                  std::vector<bool>        &cylindrical,
-                  std::vector<std::string> &disc_faces)
+                  const std::string         &description,
+                  std::vector<Body>         &bodies,
+                  std::vector<std::string>  &body_sets,
+                  std::vector<bool>         &cylindrical,
+                  std::vector<std::string>  &disc_faces,
+                  const parameters::Damping &damping)
       {
         std::vector<int> owner(cells.size(), -1);
         for (unsigned int b = 0; b < body_items.size(); ++b)
@@ -149,14 +150,22 @@ namespace squeal
             body.id   = b;
             read_law(item, body);
             const std::string type = item.text("type", "other");
-            if (type != "other" && type != "disc" && type != "pad" &&
-                type != "support")
+            if (type != "other" && type != "disc")
               throw std::runtime_error(
                 item.where() + ": type = '" + type +
-                "': allowed are other, disc, pad, support");
-            body.modulus_swept    = type == "pad";
-            body.density_swept    = type == "support";
-            body.disc             = type == "disc";
+                "': allowed are other and disc (a sweep names the body's "
+                "parameters: " +
+                item.name + ".E, " + item.name + ".rho)");
+            body.disc        = type == "disc";
+            body.own_damping = item.has("alpha") || item.has("beta");
+            if (body.own_damping)
+              {
+                body.alpha = item.number("alpha", damping.alpha);
+                body.beta  = item.number("beta", damping.beta);
+                if (!(body.alpha >= 0.) || !(body.beta >= 0.))
+                  throw std::runtime_error(
+                    item.where() + ": need alpha >= 0 [1/s] and beta >= 0 [s]");
+              }
             const std::string set = item.text("set", item.name);
             body_sets.push_back(set);
             const std::string manifold = item.text("manifold", "none");
@@ -298,11 +307,11 @@ namespace squeal
       const auto body_items =
         parse_list("Bodies",
                    mf.bodies,
-                   {"set",  "E",    "nu",     "rho",      "type",
-                    "face", "axis", "centre", "manifold", "law",
-                    "E1",   "E2",   "E3",     "nu12",     "nu13",
-                    "nu23", "G12",  "G13",    "G23",      "Et",
-                    "nut",  "Gt",   "frame",  "axis1",    "axis2"});
+                   {"set",   "E",     "nu",   "rho",    "type",     "alpha",
+                    "beta",  "face",  "axis", "centre", "manifold", "law",
+                    "E1",    "E2",    "E3",   "nu12",   "nu13",     "nu23",
+                    "G12",   "G13",   "G23",  "Et",     "nut",      "Gt",
+                    "frame", "axis1", "axis2"});
       if (body_items.empty())
         throw std::runtime_error(prefix + "Bodies: " + description() +
                                  " needs at least one body");
@@ -314,7 +323,8 @@ namespace squeal
                                                  bodies,
                                                  body_sets,
                                                  cylindrical,
-                                                 disc_faces);
+                                                 disc_faces,
+                                                 prm.damping);
       check_overlap(coarse, cells, owner, bodies, description());
 
       // Face sets get boundary ids 1, 2, ... in the order the scene uses
@@ -363,12 +373,22 @@ namespace squeal
       // Contact pairs.
       const double sense =
         prm.interface.rotation_sense == "counterclockwise" ? 1. : -1.;
-      for (const Item &item : parse_list("Contact pairs",
-                                         mf.contact_pairs,
-                                         {"slave", "master", "sliding"}))
+      for (const Item &item :
+           parse_list("Contact pairs",
+                      mf.contact_pairs,
+                      {"slave", "master", "sliding", "mu", "k_n"}))
         {
           ContactPair pair;
-          pair.name   = item.name;
+          pair.name = item.name;
+          pair.friction_coefficient =
+            item.number("mu", prm.interface.friction_coefficient);
+          pair.normal_stiffness =
+            item.number("k_n", prm.interface.normal_stiffness);
+          if (!(pair.friction_coefficient >= 0. &&
+                pair.friction_coefficient <= 10.) ||
+              !(pair.normal_stiffness >= 0.))
+            throw std::runtime_error(
+              item.where() + ": need 0 <= mu <= 10 and k_n >= 0 [N/m^3]");
           pair.slave  = face_id(item, item.text("slave"));
           pair.master = face_id(item, item.text("master"));
           if (pair.slave == pair.master)
@@ -447,7 +467,7 @@ namespace squeal
       for (const Item &item :
            parse_list("Springs",
                       mf.springs,
-                      {"body", "direction", "points", "nodes", "radius"}))
+                      {"body", "direction", "points", "nodes", "radius", "k"}))
         {
           SpringSet s;
           s.name                      = item.name;
@@ -461,8 +481,10 @@ namespace squeal
                                      "' in " + prefix + "Bodies");
           s.body      = it->id;
           s.direction = item.unit("direction", "");
-          s.stiffness = prm.springs.stiffness;
-          s.radius    = item.number("radius", prm.springs.attachment_radius);
+          s.stiffness = item.number("k", prm.springs.stiffness);
+          if (!(s.stiffness >= 0.))
+            throw std::runtime_error(item.where() + ": k must be >= 0 [N/m]");
+          s.radius = item.number("radius", prm.springs.attachment_radius);
           if (!(s.radius >= 0.))
             throw std::runtime_error(item.where() + ": radius must be >= 0");
           if (item.has("points") == item.has("nodes"))

@@ -8,7 +8,9 @@
 #include <squeal/scene/scene.h>
 #include <squeal/scene/tribobrake_mesh.h>
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace squeal
@@ -66,16 +68,193 @@ namespace squeal
     Scene::density(const types::material_id       id,
                    const parameters::ScalarPoint &p) const
     {
-      const Body &b = body(id);
-      return b.density_swept ? p.support_density : b.material.density;
+      return p.get(body(id).name + ".rho");
     }
 
     double
     Scene::youngs_modulus(const types::material_id       id,
                           const parameters::ScalarPoint &p) const
     {
-      const Body &b = body(id);
-      return b.modulus_swept ? p.E_pad : b.material.youngs_modulus;
+      return p.get(body(id).name + ".E");
+    }
+
+    std::string
+    NamedParameter::column(const std::string &qualifier) const
+    {
+      std::string c = name;
+      std::replace(c.begin(), c.end(), ' ', '_');
+      return c + qualifier + (unit.empty() ? "" : "_" + unit);
+    }
+
+    std::vector<NamedParameter>
+    Scene::parameters() const
+    {
+      const double                big = std::numeric_limits<double>::max();
+      std::vector<NamedParameter> list;
+      for (const Body &b : bodies)
+        {
+          list.push_back({b.name + ".E",
+                          "Pa",
+                          b.material.youngs_modulus,
+                          0.,
+                          true,
+                          big,
+                          true});
+          list.push_back({b.name + ".rho",
+                          "kg_per_m3",
+                          b.material.density,
+                          0.,
+                          true,
+                          big,
+                          true});
+          if (b.own_damping)
+            {
+              list.push_back(
+                {b.name + ".alpha", "per_s", b.alpha, 0., false, big, false});
+              list.push_back(
+                {b.name + ".beta", "s", b.beta, 0., false, big, false});
+            }
+        }
+      for (const ContactPair &c : contact_pairs)
+        {
+          // the Interface entry's range
+          list.push_back({c.name + ".mu",
+                          "",
+                          c.friction_coefficient,
+                          0.,
+                          false,
+                          10.,
+                          false});
+          list.push_back({c.name + ".k_n",
+                          "N_per_m3",
+                          c.normal_stiffness,
+                          0.,
+                          false,
+                          big,
+                          false});
+        }
+      for (const SpringSet &s : springs)
+        list.push_back(
+          {s.name + ".k", "N_per_m", s.stiffness, 0., false, big, true});
+      list.push_back(
+        {"damping.alpha", "per_s", damping_alpha, 0., false, big, false});
+      list.push_back(
+        {"damping.beta", "s", damping_beta, 0., false, big, false});
+      parameters::ScalarPoint unique; // throws on a repeated name
+      for (const auto &p : list)
+        unique.add(p.name, p.value);
+      return list;
+    }
+
+    NamedParameter
+    Scene::parameter(const std::string &name) const
+    {
+      const auto list = parameters();
+      for (const auto &p : list)
+        if (p.name == name)
+          return p;
+      return {name, "", nominal_point().get(name)}; // throws with the names
+    }
+
+    void
+    Scene::set_nominal(const std::string &name, const double value)
+    {
+      parameter(name); // throws on an unknown name
+      const auto dot  = name.rfind('.');
+      const auto item = name.substr(0, dot);
+      const auto key  = name.substr(dot + 1);
+      if (item == "damping")
+        (key == "alpha" ? damping_alpha : damping_beta) = value;
+      for (Body &b : bodies)
+        if (b.name == item)
+          {
+            if (key == "E")
+              {
+                if (b.law.anisotropic)
+                  b.law.C *= value / b.material.youngs_modulus;
+                b.material.youngs_modulus = value;
+              }
+            else if (key == "rho")
+              b.material.density = value;
+            else
+              (key == "alpha" ? b.alpha : b.beta) = value;
+          }
+      for (ContactPair &c : contact_pairs)
+        if (c.name == item)
+          (key == "mu" ? c.friction_coefficient : c.normal_stiffness) = value;
+      for (SpringSet &k : springs)
+        if (k.name == item)
+          k.stiffness = value;
+    }
+
+    parameters::ScalarPoint
+    Scene::nominal_point() const
+    {
+      parameters::ScalarPoint p;
+      for (const auto &n : parameters())
+        p.add(n.name, n.value);
+      return p;
+    }
+
+    double
+    Scene::common_friction_coefficient(const parameters::ScalarPoint &p) const
+    {
+      if (contact_pairs.empty())
+        return 0.;
+      const double mu = p.get(contact_pairs[0].name + ".mu");
+      for (const ContactPair &c : contact_pairs)
+        if (p.get(c.name + ".mu") != mu)
+          throw std::runtime_error(
+            "the preload and the braking run solve one Coulomb law for all "
+            "contact pairs: '" +
+            contact_pairs[0].name + "' has mu = " + std::to_string(mu) + ", '" +
+            c.name + "' mu = " + std::to_string(p.get(c.name + ".mu")) +
+            "; give them the same");
+      return mu;
+    }
+
+    std::vector<parameters::ScalarPoint>
+    sweep_points(const Scene &scene, const parameters::Sweep &sweep)
+    {
+      const parameters::ScalarPoint nominal = scene.nominal_point();
+      for (const auto *axis : {&sweep.first, &sweep.second})
+        {
+          const std::string entry =
+            axis == &sweep.first ? "Sweep/First" : "Sweep/Second";
+          if (!nominal.has(axis->parameter))
+            throw std::runtime_error(
+              entry + " parameter = '" + axis->parameter +
+              "' is not a parameter of scene " + scene.description() +
+              "; its parameters are " + nominal.names());
+          const NamedParameter info = scene.parameter(axis->parameter);
+          for (const double v : axis->values)
+            if (!(info.low_open ? v > info.lowest : v >= info.lowest) ||
+                v > info.highest)
+              {
+                std::ostringstream m;
+                m << entry << " values: " << v << " is out of range for "
+                  << info.name << " (must be " << (info.low_open ? "> " : ">= ")
+                  << info.lowest;
+                if (info.highest < std::numeric_limits<double>::max())
+                  m << " and <= " << info.highest;
+                m << ")";
+                throw std::runtime_error(m.str());
+              }
+        }
+      if (sweep.first.parameter == sweep.second.parameter)
+        throw std::runtime_error(
+          "Sweep/First parameter and Sweep/Second parameter are both '" +
+          sweep.first.parameter + "'; choose two different parameters");
+      std::vector<parameters::ScalarPoint> points;
+      for (const double s : sweep.second.values)
+        for (const double f : sweep.first.values)
+          {
+            parameters::ScalarPoint p = nominal;
+            p.set(sweep.second.parameter, s);
+            p.set(sweep.first.parameter, f);
+            points.push_back(p);
+          }
+      return points;
     }
 
     SymmetricTensor<4, 3>
@@ -160,31 +339,31 @@ namespace squeal
             return;
 
           Body pad;
-          pad.name          = "pad";
-          pad.id            = material::pad;
-          pad.material      = prm.materials.pad;
-          pad.modulus_swept = true;
+          pad.name     = "pad";
+          pad.id       = material::pad;
+          pad.material = prm.materials.pad;
           bodies.push_back(pad);
           Body support;
-          support.name          = "support";
-          support.id            = material::support;
-          support.material      = prm.materials.support;
-          support.density_swept = true;
+          support.name     = "support";
+          support.id       = material::support;
+          support.material = prm.materials.support;
           bodies.push_back(support);
 
           ContactPair pair;
-          pair.name          = "pad on disc";
-          pair.slave         = boundary::pad_contact;
-          pair.master        = boundary::disc_contact;
-          pair.centre        = Point<3>(g.pad_radius, 0., 0.);
-          pair.normal        = Tensor<1, 3>({0., 0., 1.});
-          pair.plane_axes[0] = Tensor<1, 3>({1., 0., 0.});
-          pair.plane_axes[1] = Tensor<1, 3>({0., 1., 0.});
-          pair.plane_origin  = Point<3>();
-          pair.sliding       = prm.interface.sliding_tangent();
-          pair.axis          = Tensor<1, 3>({0., 0., 1.});
-          pair.axis_point    = Point<3>();
-          pair.size          = g.pad_size;
+          pair.name                 = "pad on disc";
+          pair.slave                = boundary::pad_contact;
+          pair.master               = boundary::disc_contact;
+          pair.centre               = Point<3>(g.pad_radius, 0., 0.);
+          pair.normal               = Tensor<1, 3>({0., 0., 1.});
+          pair.plane_axes[0]        = Tensor<1, 3>({1., 0., 0.});
+          pair.plane_axes[1]        = Tensor<1, 3>({0., 1., 0.});
+          pair.plane_origin         = Point<3>();
+          pair.sliding              = prm.interface.sliding_tangent();
+          pair.axis                 = Tensor<1, 3>({0., 0., 1.});
+          pair.axis_point           = Point<3>();
+          pair.size                 = g.pad_size;
+          pair.friction_coefficient = prm.interface.friction_coefficient;
+          pair.normal_stiffness     = prm.interface.normal_stiffness;
           contact_pairs.push_back(pair);
 
           // the loading arm holds the support top's centre along the radius
@@ -270,12 +449,20 @@ namespace squeal
     std::unique_ptr<Scene>
     make_scene(const parameters::AllParameters &prm)
     {
+      std::unique_ptr<Scene> scene;
       if (prm.scene.type == "tribobrake" || prm.scene.type == "disc")
-        return std::make_unique<TriboBrakeScene>(prm,
-                                                 prm.scene.type ==
-                                                   "tribobrake");
-      if (prm.scene.type == "mesh file")
-        return std::make_unique<MeshFileScene>(prm);
+        scene =
+          std::make_unique<TriboBrakeScene>(prm,
+                                            prm.scene.type == "tribobrake");
+      else if (prm.scene.type == "mesh file")
+        scene = std::make_unique<MeshFileScene>(prm);
+      if (scene)
+        {
+          scene->damping_alpha = prm.damping.alpha;
+          scene->damping_beta  = prm.damping.beta;
+          scene->parameters(); // names must be unique
+          return scene;
+        }
       throw std::runtime_error("Scene/Type = '" + prm.scene.type +
                                "': allowed are tribobrake, disc and mesh file");
     }

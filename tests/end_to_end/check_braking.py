@@ -148,13 +148,13 @@ check("the sparse product is refused under mpirun",
 # A grid of two braking runs.
 grid_plot = os.path.join(here, "..", "..", "scripts", "plot_braking_grid.py")
 grid, _ = run("grid", "subsection Transient\n  set Grid = true\n  set End time = 0.003\nend\n"
-              "subsection Sweep\n  set First parameter = pad modulus\n"
-              "  set First values = 25.1e9\n  set Second parameter = friction coefficient\n"
+              "subsection Sweep\n  set First parameter = pad.E\n"
+              "  set First values = 25.1e9\n  set Second parameter = pad on disc.mu\n"
               "  set Second values = 0.3, 0.5\nend\n")
 stab = table(os.path.join(grid, "stability_table.csv"))
 check("stability table: a row per point with its parameters",
-      len(stab) == 2 and [float(r["mu"]) for r in stab] == [0.3, 0.5]
-      and all(float(r["E_pad_Pa"]) == 25.1e9 for r in stab)
+      len(stab) == 2 and [float(r["pad_on_disc.mu"]) for r in stab] == [0.3, 0.5]
+      and all(float(r["pad.E_Pa"]) == 25.1e9 for r in stab)
       and all(r["verdict"] and not r["verdict"].startswith("failed") for r in stab), str(stab))
 for r, m in zip(stab, (0.3, 0.5)):
     pf = table(os.path.join(grid, r["folder"], "forces.csv"))

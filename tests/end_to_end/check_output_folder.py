@@ -38,8 +38,10 @@ subsection Eigensolver
   set Maximum frequency = 3000
 end
 subsection Sweep
-  set First values = 25e9
-  set Second values = 0.1
+  set First parameter = disc.E
+  set First values = 210e9
+  set Second parameter = damping.alpha
+  set Second values = 0
 end
 subsection Output
   set Directory = {directory}

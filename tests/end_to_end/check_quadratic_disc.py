@@ -80,7 +80,7 @@ def write_disc(path, quadratic, ns=24, nr=4, nl=1):
 with open("base.prm", "w") as f:
     f.write("subsection Mesh\n  set Finite element degree = 3\nend\n"
             "subsection Damping\n  set Alpha = 0\n  set Beta = 0\nend\n" +
-            full_solver_point(0, 8000))
+            full_solver_point(0, 8000, 0, names=("damping.alpha", "damping.beta")))
 
 errors = {}
 for kind, quadratic in (("C3D20R", True), ("C3D8", False)):

@@ -38,8 +38,9 @@ squeal, prm, work = sys.argv[1:4]
 other_pair = sys.argv[4:] == ["--other-pair"]
 here = os.path.dirname(os.path.abspath(__file__))
 plot = os.path.join(here, "..", "..", "scripts", "plot_cea.py")
-HEADER = "point,mu,E_pad_Pa,mode,re_per_s,freq_Hz,zeta,unstable,track"
-REGIONS = "mu,E_pad_min_Pa,E_pad_max_Pa,freq_min_Hz,freq_max_Hz,max_re_per_s,track"
+HEADER = "point,pad.E_Pa,pad_on_disc.mu,mode,re_per_s,freq_Hz,zeta,unstable,track"
+REGIONS = ("pad_on_disc.mu,pad.E_min_Pa,pad.E_max_Pa,freq_min_Hz,freq_max_Hz,"
+           "max_re_per_s,track")
 
 
 def fail(msg):
@@ -104,19 +105,19 @@ def plots(out):
 def check_other_pair():
     out = os.path.join(work, "other_pair")
     run([squeal], out)
-    ev = rows(out, HEADER + ",k_spring_N_per_m,rho_support_kg_per_m3")
-    springs = sorted({float(r["k_spring_N_per_m"]) for r in ev})
+    ev = rows(out, "point,support_springs.k_N_per_m,support.rho_kg_per_m3,"
+              "mode,re_per_s,freq_Hz,zeta,unstable,track")
+    springs = sorted({float(r["support_springs.k_N_per_m"]) for r in ev})
     expected = [2e6 * (5e7 / 2e6) ** (i / 4) for i in range(5)]
     if len(springs) != 5 or any(abs(a - b) > 1e-9 * b
                                 for a, b in zip(springs, expected)):
         fail(f"spring stiffness values {springs}, expected {expected}")
-    if {float(r["rho_support_kg_per_m3"]) for r in ev} != {7800.0, 76500.0}:
+    if {float(r["support.rho_kg_per_m3"]) for r in ev} != {7800.0, 76500.0}:
         fail("support density column")
-    if {(float(r["mu"]), float(r["E_pad_Pa"])) for r in ev} != {(0.5, 25e9)}:
-        fail("mu and E_pad must stay at their nominal values")
     with open(os.path.join(out, "unstable_regions.csv")) as f:
         header = f.readline().strip()
-    want = ("rho_support_kg_per_m3,k_spring_min_N_per_m,k_spring_max_N_per_m,"
+    want = ("support.rho_kg_per_m3,support_springs.k_min_N_per_m,"
+            "support_springs.k_max_N_per_m,"
             "freq_min_Hz,freq_max_Hz,max_re_per_s,track")
     if header != want:
         fail(f"unstable_regions.csv header '{header}'")
@@ -156,7 +157,7 @@ for r in ev:
         fail(f"inconsistent row {r}")
     if int(r["unstable"]) != (re > 1e-3):
         fail(f"unstable flag wrong in {r}")
-    if float(r["mu"]) == 0.01 and int(r["unstable"]):
+    if float(r["pad_on_disc.mu"]) == 0.01 and int(r["unstable"]):
         fail(f"unstable eigenvalue at mu = 0.01: {r}")
 with open(os.path.join(serial, "unstable_regions.csv")) as f:
     if f.readline().strip() != REGIONS:

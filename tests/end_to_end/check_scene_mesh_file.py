@@ -41,8 +41,8 @@ check("export refuses to overwrite", r.returncode != 0 and "exists" in r.stderr,
 SCENE = {
     "Bodies": "disc: set=DISC, E=210e9, nu=0.3, rho=7800, type=disc, "
               "face=DISC_FACE, manifold=cylindrical; "
-              "pad: set=PAD, E=25e9, nu=0.3, rho=2500, type=pad; "
-              "support: set=SUPPORT, E=210e9, nu=0.3, rho=76500, type=support",
+              "pad: set=PAD, E=25e9, nu=0.3, rho=2500; "
+              "support: set=SUPPORT, E=210e9, nu=0.3, rho=76500",
     "Contact pairs": "pad on disc: slave=PAD_FACE, master=DISC_FACE",
     "Holds": "disc hub: set=DISC_HUB",
     "Point holds": "loading arm: point=0.1 0 0.11, component=x",

@@ -43,9 +43,11 @@ def run_squeal(squeal, base_prm, name, extra="", mpi=0):
     return out, r.stdout
 
 
-def full_solver_point(mu=0.5, f_max=None, e_pad=25e9, f_min=None):
+def full_solver_point(mu=0.5, f_max=None, e_pad=25e9, f_min=None,
+                      names=("pad.E", "pad on disc.mu")):
     """Parameter-file text: the full solver at the single sweep point
-    E_pad = E_PAD [Pa] and MU (default: thesis Table 3.1, 25 GPa and 0.5),
+    NAMES[0] = E_PAD and NAMES[1] = MU (default: the TriboBrake's pad
+    modulus and friction coefficient at thesis Table 3.1's 25 GPa and 0.5),
     in the band F_MIN-F_MAX Hz where given."""
     band = (f"  set Minimum frequency = {f_min}\n" if f_min else "") + \
         (f"  set Maximum frequency = {f_max}\n" if f_max else "")
@@ -53,9 +55,9 @@ def full_solver_point(mu=0.5, f_max=None, e_pad=25e9, f_min=None):
   set Method = full
 {band}end
 subsection Sweep
-  set First parameter = pad modulus
+  set First parameter = {names[0]}
   set First values = {e_pad:g}
-  set Second parameter = friction coefficient
+  set Second parameter = {names[1]}
   set Second values = {mu}
 end
 """

@@ -83,9 +83,11 @@ namespace squeal
     public:
       /** Keeps references to @p prm and @p handler (echoed into the output
        * folder). */
-      BrakingAnalysis(const parameters::AllParameters &prm,
-                      const dealii::ParameterHandler  &handler,
-                      MPI_Comm                         comm);
+      BrakingAnalysis(
+        const parameters::AllParameters                   &prm,
+        const dealii::ParameterHandler                    &handler,
+        MPI_Comm                                           comm,
+        const std::vector<std::pair<std::string, double>> &point = {});
 
       /**
        * Runs the simulation; results in Output/Directory (written to

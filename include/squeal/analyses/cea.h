@@ -22,6 +22,7 @@
 
 #include <complex>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -161,7 +162,14 @@ namespace squeal
       /// structural parameter's range and evenly spaced values between.
       std::vector<parameters::ScalarPoint>
       basis_samples() const;
-      /// "E_pad = 1e10 Pa, mu = 0.2" for a point, the swept ones only.
+      /// The named parameters the sweep varies (the model's parts let them).
+      std::set<std::string>
+      varied_parameters() const;
+      /// Every sweep point (scene::sweep_points(); the scene must exist).
+      std::vector<parameters::ScalarPoint>
+      sweep_points() const;
+      /// "pad.E = 1e10, pad on disc.mu = 0.2" for a point, the swept ones
+      /// only.
       std::string
       describe(const parameters::ScalarPoint &p) const;
 

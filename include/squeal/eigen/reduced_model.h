@@ -131,19 +131,17 @@ namespace squeal
       void
       make_reference_mass(const physics::MatrixParts &model);
 
-      static constexpr unsigned int n_parts = physics::MatrixParts::n_parts;
-      physics::MatrixParts          parts;    ///< non-owning
-      PETScMatrix                   M_ref;    ///< M at the reference
-      std::array<bool, n_parts>     active{}; ///< part is non-zero
-      bool has_residuals = false; ///< G is complete for the current basis
-      unsigned int    largest_sample = 0;      ///< see sample_mode_count()
-      Eigen::MatrixXd V;                       ///< n_local x r, M-orthonormal
-      std::array<Eigen::MatrixXd, n_parts> Ar; ///< V^T A_k V
-      std::array<Eigen::MatrixXd, n_parts> W;  ///< A_k V, local rows
-      std::array<std::array<Eigen::MatrixXd, n_parts>, n_parts>
-                       G; ///< (A_k V)^T (A_l V)
-      dealii::IndexSet owned;
-      MPI_Comm         comm;
+      physics::MatrixParts parts;  ///< non-owning
+      PETScMatrix          M_ref;  ///< M at the reference
+      std::vector<bool>    active; ///< part is non-zero
+      bool has_residuals = false;  ///< G is complete for the current basis
+      unsigned int    largest_sample = 0; ///< see sample_mode_count()
+      Eigen::MatrixXd V;                  ///< n_local x r, M-orthonormal
+      std::vector<Eigen::MatrixXd>              Ar; ///< V^T A_k V
+      std::vector<Eigen::MatrixXd>              W;  ///< A_k V, local rows
+      std::vector<std::vector<Eigen::MatrixXd>> G;  ///< (A_k V)^T (A_l V)
+      dealii::IndexSet                          owned;
+      MPI_Comm                                  comm;
     };
 
     /**

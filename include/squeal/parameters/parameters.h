@@ -261,76 +261,61 @@ namespace squeal
     };
 
     /**
-     * The values of every scalar parameter a sweep can vary, at one sweep
-     * point. The stiffness, mass and damping matrices depend on them
-     * affinely (see physics::MatrixParts), which is what lets the reduced
-     * solver sweep any of them without re-assembly.
+     * The values of the named scalar parameters of a scene at one point
+     * (scene::Scene::parameters(): `<body>.E`, `<pair>.mu`, `damping.alpha`,
+     * ...), in the order they were added. The stiffness, mass and damping
+     * matrices depend on them affinely (physics::MatrixParts), which is
+     * what lets the reduced solver sweep any of them without re-assembly.
      */
-    struct ScalarPoint
+    class ScalarPoint
     {
-      double E_pad               = 25e9;      ///< pad Young's modulus [Pa]
-      double mu                  = 0.;        ///< friction coefficient [-]
-      double interface_stiffness = 2.5895e12; ///< normal, per area [N/m^3]
-      double spring_stiffness    = 8.422e6;   ///< per support spring [N/m]
-      double support_density     = 76500.;    ///< [kg/m^3]
-      double alpha               = 0.;        ///< Rayleigh, mass [1/s]
-      double beta                = 0.;        ///< Rayleigh, stiffness [s]
-
+    public:
       /**
-       * The value of the parameter called @p name (one of
-       * sweepable_parameters()). @throws std::runtime_error on another name.
+       * The value of the parameter called @p name, in its SI unit.
+       * @throws std::runtime_error naming @p name and listing the names
+       * the point has.
        */
       double
       get(const std::string &name) const;
       /** Sets the parameter called @p name. @throws as get(). */
       void
       set(const std::string &name, const double value);
+      /**
+       * Adds a parameter.
+       * @throws std::runtime_error if the point has one called @p name.
+       */
+      void
+      add(const std::string &name, const double value);
+      /** Whether the point has a parameter called @p name. */
+      bool
+      has(const std::string &name) const;
+      /** The names and values, in the order they were added. */
+      const std::vector<std::pair<std::string, double>> &
+      values() const
+      {
+        return named;
+      }
+      /** The names, separated by `|`, for error messages. */
+      std::string
+      names() const;
+
+    private:
+      std::vector<std::pair<std::string, double>> named;
     };
-
-    /** A parameter a sweep can vary, with its names in the output. */
-    struct SweepableParameter
-    {
-      const char *name;       ///< as written in the `.prm` file
-      const char *symbol;     ///< CSV column stem, e.g. `E_pad`
-      const char *unit;       ///< CSV unit suffix, e.g. `Pa` ("" if none)
-      double      lowest;     ///< smallest allowed value
-      bool        low_open;   ///< lowest itself excluded
-      bool        structural; ///< changes M or the structural K
-    };
-
-    /**
-     * Every sweepable parameter: pad modulus, friction coefficient,
-     * interface stiffness, spring stiffness, support density, Rayleigh alpha,
-     * Rayleigh beta.
-     */
-    const std::vector<SweepableParameter> &
-    sweepable_parameters();
-
-    /**
-     * The entry of sweepable_parameters() called @p name.
-     * @throws std::runtime_error listing the allowed names otherwise.
-     */
-    const SweepableParameter &
-    sweepable_parameter(const std::string &name);
-
-    /**
-     * CSV column name of a sweepable parameter, with @p qualifier inserted
-     * before the unit: ("pad modulus", "_min") gives `E_pad_min_Pa`.
-     */
-    std::string
-    column_name(const std::string &name, const std::string &qualifier = "");
 
     /** One axis of a sweep: which parameter and its values. */
     struct SweepAxis
     {
-      std::string parameter;          ///< a name of sweepable_parameters()
+      std::string parameter;          ///< a name of the scene's parameters
+                                      ///< (scene::Scene::parameters())
       std::string values_text;        ///< `log A B N`, `linear A B N` or a list
       bool        log_spaced = false; ///< values came from `log A B N`
       std::vector<double> values;     ///< parsed from values_text
 
       /**
        * Parses values_text. @throws std::runtime_error naming @p entry and
-       * the allowed forms if it is malformed or a value is out of range.
+       * the allowed forms if it is malformed or a value is not finite (the
+       * scene checks the range of its parameter: scene::sweep_points()).
        */
       void
       parse(const std::string &entry);
@@ -346,17 +331,18 @@ namespace squeal
     /**
      * A two-parameter sweep. Modes are tracked along the first parameter for
      * each value of the second, and unstable regions are intervals of the
-     * first. Defaults: pad modulus, 41 log-spaced values 1-100 GPa, against
-     * the friction coefficients of the thesis.
+     * first. Defaults (the TriboBrake's names): the pad's Young's modulus
+     * `pad.E`, 41 log-spaced values 1-100 GPa, against the friction
+     * coefficients of the thesis for the pair `pad on disc`.
      */
     struct Sweep
     {
-      SweepAxis first{"pad modulus",
+      SweepAxis first{"pad.E",
                       "log 1e9 1e11 41",
                       true,
                       {}}; ///< the tracked axis
       /// one tracked sweep per value of this axis
-      SweepAxis second{"friction coefficient",
+      SweepAxis second{"pad on disc.mu",
                        "0.01, 0.1, 0.2, 0.3, 0.5, 0.7",
                        false,
                        {}};
@@ -488,22 +474,6 @@ namespace squeal
        */
       void
       read(ParameterHandler &prm, const std::string &filename);
-
-      /** The scalar parameters as set in the file (no sweep applied). */
-      ScalarPoint
-      nominal_point() const;
-
-      /**
-       * Every sweep point: the nominal point with the first parameter set to
-       * each of its values, for each value of the second (second outermost).
-       */
-      std::vector<ScalarPoint>
-      sweep_points() const;
-
-      /** Sets the scalar parameters of the file (materials, interface,
-       * springs, damping) to @p p: the inverse of nominal_point(). */
-      void
-      set_nominal_point(const ScalarPoint &p);
     };
 
     /**

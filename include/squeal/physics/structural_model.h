@@ -19,6 +19,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
@@ -32,6 +33,8 @@
 #include <complex>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -67,33 +70,44 @@ namespace squeal
                         dealii::FullMatrix<double> &cell_m);
 
     /**
-     * The matrix parts of a linear model (n x n each; mass parts in kg,
-     * stiffness parts in N/m), each assembled at a reference value of the
-     * parameter that scales it, and their affine combinations at a sweep
-     * point p (parameters::ScalarPoint):
-     *   M(p) = M_fixed + (rho_s / rho_ref) M_support,
-     *   K_s(p) = K_rest + (E_pad / E_ref) K_pad + (k / k_ref) K_springs,
-     *   K(p) = K_s(p) + (k_n / k_n_ref) (K_n + mu K_t),
-     *   C(p) = alpha M(p) + beta K_s(p)    (Rayleigh damping of the bodies).
-     * K_t is the friction part per unit mu (thesis eq. 3-1). All parts must
-     * share one sparsity pattern. Non-owning.
+     * The matrix parts of a linear model (n x n each, one sparsity pattern;
+     * mass parts in kg, stiffness parts in N/m), each assembled at a
+     * reference value of the named parameter that scales it, and their
+     * affine combinations at a point p (parameters::ScalarPoint):
+     *   M(p)   = sum over mass parts      s_k(p) M_k,
+     *   K_s(p) = sum over stiffness parts s_k(p) K_k   (bodies, springs),
+     *   K(p)   = K_s(p) + sum over pairs (k_n / k_n,ref) (K_n + mu K_t),
+     *   C(p)   = sum over mass parts alpha_k(p) s_k(p) M_k
+     *          + sum over stiffness parts beta_k(p) s_k(p) K_k,
+     * with s_k = p[scale] / reference (1 without a scale) and alpha_k,
+     * beta_k the Rayleigh coefficients named by the part's damping (a
+     * body's own or the scene's: per-body Rayleigh damping). K_t is a
+     * pair's friction part per unit mu (thesis eq. 3-1). Non-owning.
      */
     struct MatrixParts
     {
-      /** The parts, in the order of the coefficient arrays. */
-      enum Part
+      /** What a part is. */
+      enum class Kind
       {
-        mass_fixed,         ///< disc and pad (and constrained rows) [kg]
-        mass_support,       ///< support at rho_ref [kg]
-        stiffness_rest,     ///< disc and support elasticity [N/m]
-        stiffness_pad,      ///< pad elasticity at E_ref [N/m]
-        stiffness_springs,  ///< support springs at k_ref [N/m]
-        interface_normal,   ///< K_n at k_n_ref [N/m]
-        interface_friction, ///< K_t per unit mu at k_n_ref [N/m]
-        n_parts
+        mass,               ///< enters M (and C through alpha) [kg]
+        stiffness,          ///< enters K_s, K (and C through beta) [N/m]
+        interface_normal,   ///< a pair's K_n at its k_n,ref [N/m]
+        interface_friction, ///< a pair's K_t per unit mu at k_n,ref [N/m]
+      };
+      /** One assembled part. */
+      struct Part
+      {
+        const PETScMatrix *matrix = nullptr;    ///< n x n
+        Kind               kind   = Kind::mass; ///< see Kind
+        std::string        name;  ///< for logs, e.g. `stiffness of pad`
+        std::string        scale; ///< parameter scaling it, "" for none
+        double             reference = 1.; ///< its value at assembly
+        std::string        factor;         ///< friction: the pair's `<pair>.mu`
+        std::string        damping; ///< mass: an alpha, stiffness: a beta
+        bool               springs = false; ///< a spring set's stiffness
       };
       /// One coefficient per part.
-      using Coefficients = std::array<double, n_parts>;
+      using Coefficients = std::vector<double>;
 
       /** The coefficients of M, K_s, K and C at one point. */
       struct Combination
@@ -102,17 +116,37 @@ namespace squeal
         Coefficients structural;          ///< K_s(p): bodies and springs [N/m]
         Coefficients stiffness;           ///< K(p): K_s + K_n + mu K_t [N/m]
         Coefficients symmetric_stiffness; ///< K_s + K_n (no friction) [N/m]
-        Coefficients damping;             ///< C(p) = alpha M + beta K_s [N s/m]
+        Coefficients damping;             ///< C(p) [N s/m]
+        Coefficients springs;             ///< the spring sets' parts [N/m]
       };
 
-      /// the assembled parts, in the order of Part
-      std::array<const PETScMatrix *, n_parts> matrix;
-      /// The parameter values at which the parts were assembled; only
-      /// E_pad, support_density, spring_stiffness, interface_stiffness are
-      /// used, and none may be zero.
+      /// the parts; the first is a mass part, all share one pattern
+      std::vector<Part> parts;
+      /// Parameters held at a value in parts of coefficient 1 (a body's E
+      /// or rho when the model does not vary it): every point must have
+      /// these values.
+      std::vector<std::pair<std::string, double>> fixed;
+      /// the nominal point of the model (its M is the reduced solver's
+      /// reference mass)
       parameters::ScalarPoint reference;
 
-      /** Coefficients of every combination at @p p. */
+      /** Number of parts. */
+      unsigned int
+      size() const
+      {
+        return parts.size();
+      }
+      /** The matrix of part @p k. */
+      const PETScMatrix &
+      matrix(const unsigned int k) const
+      {
+        return *parts[k].matrix;
+      }
+      /**
+       * Coefficients of every combination at @p p.
+       * @throws std::runtime_error if @p p lacks a parameter a part names,
+       * or moves one of @ref fixed (the model must be built varying it).
+       */
       Combination
       coefficients(const parameters::ScalarPoint &p) const;
       /** sum_k c[k] part_k into @p result (re-initialised). */
@@ -124,19 +158,24 @@ namespace squeal
       /** K(p), non-symmetric when mu != 0. */
       void
       stiffness(const parameters::ScalarPoint &p, PETScMatrix &K) const;
-      /** K(p) without the friction part (symmetric). */
+      /** K(p) without the friction parts (symmetric). */
       void
       symmetric_stiffness(const parameters::ScalarPoint &p,
                           PETScMatrix                   &K) const;
       /** C(p). */
       void
       damping(const parameters::ScalarPoint &p, PETScMatrix &C) const;
-      /** The friction part K_t (per unit mu), for the basis enrichment. */
-      const PETScMatrix &
-      friction() const
-      {
-        return *matrix[interface_friction];
-      }
+      /** The spring sets' stiffness at @p p. */
+      void
+      springs(const parameters::ScalarPoint &p, PETScMatrix &K) const;
+      /**
+       * The sum of the parts of kind @p kind, each with coefficient 1 (the
+       * interface parts at their reference stiffness, for the reduced
+       * basis' enrichment); false (and @p result untouched) if there is
+       * none.
+       */
+      bool
+      sum(Kind kind, PETScMatrix &result) const;
     };
 
     /**
@@ -202,15 +241,24 @@ namespace squeal
       MatrixParts
       parts() const
       {
-        return {{{&mass,
-                  &mass_support,
-                  &stiffness_rest,
-                  &stiffness_pad,
-                  &stiffness_springs,
-                  &interface_normal,
-                  &interface_friction}},
-                reference};
+        return assembled;
       }
+
+      /**
+       * The named parameters (scene::Scene::parameters()) the model's parts
+       * let vary: a body's stiffness and mass are parts of their own only
+       * when its `.E` or `.rho` is listed (or it has its own damping); the
+       * others are summed into common parts at their nominal values. Set
+       * it before setup_and_assemble(); unset (the default) varies every
+       * parameter. The interface and spring parts always vary.
+       */
+      std::optional<std::set<std::string>> varied;
+
+      /**
+       * Nominal values that replace the scene's (scene::Scene::set_nominal())
+       * when setup_and_assemble() makes it: a braking grid's point.
+       */
+      std::vector<std::pair<std::string, double>> nominal_overrides;
 
       /** Number of degrees of freedom. */
       dealii::types::global_dof_index
@@ -253,13 +301,8 @@ namespace squeal
       /// the DoFs this rank's cells touch
       dealii::IndexSet locally_relevant_dofs;
 
-      PETScMatrix mass;               ///< disc and pad (M_fixed) [kg]
-      PETScMatrix mass_support;       ///< support at reference density [kg]
-      PETScMatrix stiffness_rest;     ///< disc, support [N/m]
-      PETScMatrix stiffness_pad;      ///< pad at E_ref [N/m]
-      PETScMatrix stiffness_springs;  ///< springs at k_ref [N/m]
-      PETScMatrix interface_normal;   ///< K_n [N/m]
-      PETScMatrix interface_friction; ///< K_t per unit mu [N/m]
+      /// the matrices of the parts (see parts()), in their order
+      std::vector<std::unique_ptr<PETScMatrix>> part_matrices;
 
       /**
        * How the springs spread over their attachment discs are integrated
@@ -269,14 +312,12 @@ namespace squeal
        * rules fine enough for the bell, so the spring model is the same on
        * every mesh and degree (what the tolerance-driven mesh needs). true:
        * lumped on the face's FE_Q support points (Gauss-Lobatto rule), which
-       * keeps stiffness_springs diagonal, as the explicit dynamics' grounded
+       * keeps the springs' parts diagonal, as the explicit dynamics' grounded
        * springs need, at the price of a model that moves with the node
        * spacing.
        */
       bool lumped_springs = false;
 
-      /// Parameter values of the assembled parts (see MatrixParts).
-      parameters::ScalarPoint reference;
 
       /** A point mass of the scene at its node (see setup_and_assemble()). */
       struct PointMass
@@ -294,19 +335,35 @@ namespace squeal
     private:
       void
       setup_dofs_and_assemble(dealii::ConditionalOStream &pcout);
-      /// the scene's lumped masses into the mass part `mass` (coefficient
+      /// the scene's lumped masses into the mass part @p M (coefficient
       /// 1): a face set's as a consistent surface mass of density m / area,
       /// a point's on the diagonal of its node's three DoFs
       void
-      add_masses(dealii::ConditionalOStream &pcout);
-      void
-      assemble_elasticity();
-      /// adds one spring set of the scene to stiffness_springs
+      add_masses(PETScMatrix &M, dealii::ConditionalOStream &pcout);
+      /// the parts of the bodies (one mass and one stiffness part per
+      /// group of bodies that share their varied parameters and damping)
+      /// into part_matrices and @p parts; returns the common (fixed) mass
+      /// and stiffness parts' indices
+      std::pair<unsigned int, unsigned int>
+      assemble_elasticity(const parameters::ScalarPoint &nominal,
+                          MatrixParts                   &parts);
+      /// adds one spring set of the scene to @p K at @p k [N/m] per spring
       /// @throws std::runtime_error if a face the springs spread over is
       /// not a parallelogram, or a point spring has an oblique direction
       void
       add_springs(const scene::SpringSet     &springs,
+                  PETScMatrix                &K,
+                  double                      k,
                   dealii::ConditionalOStream &pcout);
+      /// a new zero part matrix on the common pattern
+      PETScMatrix &
+      new_part_matrix();
+      /// the common sparsity pattern of every part
+      std::unique_ptr<dealii::DynamicSparsityPattern> pattern;
+      /// see parts()
+      MatrixParts assembled;
+      /// part_matrices used so far in the current assembly
+      unsigned int next_part = 0;
       /// the quadrature of one face the springs' bells touch
       struct SpringFaceRule;
       /// the faces the springs of @p s spread over with their bell-weighted
@@ -316,19 +373,23 @@ namespace squeal
       spring_face_rules(const scene::SpringSet    &s,
                         std::vector<double>       &total,
                         std::vector<unsigned int> &faces_per_spring) const;
-      /// the Winkler layers of @p rules into stiffness_springs, each
+      /// the Winkler layers of @p rules into @p K at @p k per spring, each
       /// spring's bell normalised by its @p total
       void
       assemble_spread_springs(const scene::SpringSet            &s,
                               const std::vector<SpringFaceRule> &rules,
-                              const std::vector<double>         &total);
+                              const std::vector<double>         &total,
+                              PETScMatrix                       &K,
+                              double                             k);
       /// the springs with no face in reach (total 0) at the nearest
       /// unconstrained node, along the one acting component @p component;
       /// returns the largest station-node distance [m] and their number
       std::pair<double, unsigned int>
       add_nearest_node_springs(const scene::SpringSet    &s,
                                const std::vector<double> &total,
-                               unsigned int               component);
+                               unsigned int               component,
+                               PETScMatrix               &K,
+                               double                     k);
     };
 
     /**

@@ -25,6 +25,7 @@
 #include <squeal/parameters/parameters.h>
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -51,8 +52,8 @@ namespace squeal
       /// false: the body is isotropic (Body::material)
       bool anisotropic = false;
       /// the stiffness tensor in the material frame [Pa], at the body's
-      /// reference modulus Body::material.youngs_modulus (the sweep of a
-      /// modulus_swept body scales it by E(p) / that modulus)
+      /// reference modulus Body::material.youngs_modulus (the named
+      /// parameter `<body>.E` scales it by E(p) / that modulus)
       dealii::SymmetricTensor<4, 3> C;
       Frame                         frame = Frame::cartesian; ///< see Frame
       /// cartesian: the columns are the material axes 1, 2, 3 in global
@@ -83,12 +84,11 @@ namespace squeal
       parameters::Material material;
       /// an anisotropic law (law.anisotropic), else isotropic from material
       ElasticLaw law;
-      /// the sweep parameter `pad modulus` scales this body's Young's
-      /// modulus (its stiffness is a separate matrix part)
-      bool modulus_swept = false;
-      /// the sweep parameter `support density` scales this body's density
-      /// (its mass is a separate matrix part)
-      bool density_swept = false;
+      /// the body has its own Rayleigh damping (named parameters
+      /// `<name>.alpha`, `<name>.beta`), else the scene's
+      bool   own_damping = false;
+      double alpha       = 0.; ///< own_damping: mass-proportional [1/s]
+      double beta        = 0.; ///< own_damping: stiffness-proportional [s]
       /// a disc: its modes are named (n,m+-) from the axial motion of
       /// the face set @ref naming_face in the frame below
       bool disc = false;
@@ -132,6 +132,11 @@ namespace squeal
       dealii::Point<3>     axis_point; ///< a point of that axis [m]
       /// a length of the slave face [m] (its edge), for tolerances
       double size = 1.;
+      /// Coulomb friction coefficient [-] (named parameter `<name>.mu`)
+      double friction_coefficient = 0.;
+      /// normal interface stiffness per area of the CEA's linear coupling
+      /// [N/m^3] (named parameter `<name>.k_n`)
+      double normal_stiffness = 0.;
 
       /** The unit radial direction from the axis to the centre. */
       dealii::Tensor<1, 3>
@@ -188,8 +193,9 @@ namespace squeal
       std::vector<dealii::Point<3>>     stations; ///< m
       std::vector<dealii::Tensor<1, 3>> station_normals; ///< unit, per station
       dealii::Tensor<1, 3>              direction;       ///< unit
-      double                            stiffness = 0.;  ///< N/m per spring
-      double                            radius    = 0.;  ///< m
+      /// N/m per spring (named parameter `<name>.k`)
+      double stiffness = 0.;
+      double radius    = 0.;   ///< m
       double tolerance = 1e-9; ///< m, distance of a face from a station's plane
     };
 
@@ -211,6 +217,35 @@ namespace squeal
     {
       std::string      name;  ///< as in outputs
       dealii::Point<3> point; ///< m
+    };
+
+    /**
+     * A named scalar parameter of a scene: what a sweep varies (and model
+     * updating calibrates). Its name is built from the scene's items:
+     * `<body>.E` [Pa], `<body>.rho` [kg/m^3], `<pair>.mu` [-],
+     * `<pair>.k_n` [N/m^3], `<springs>.k` [N/m], `damping.alpha` [1/s],
+     * `damping.beta` [s], `<body>.alpha`, `<body>.beta` (a body with its
+     * own damping).
+     */
+    struct NamedParameter
+    {
+      std::string name;             ///< e.g. `pad.E`
+      std::string unit;             ///< CSV unit suffix (`Pa`, "" if none)
+      double      value    = 0.;    ///< nominal value (the file's) [unit]
+      double      lowest   = 0.;    ///< smallest allowed value
+      bool        low_open = false; ///< lowest itself excluded
+      double      highest  = std::numeric_limits<double>::max(); ///< largest
+      /// changes the mass or the structural stiffness (a reduced basis
+      /// must sample it); false for friction, interface stiffness, damping
+      bool structural = false;
+
+      /**
+       * The CSV column of the parameter: its name, spaces as `_`, then
+       * @p qualifier, then `_` and the unit: (`pad.E`, "_min") gives
+       * `pad.E_min_Pa`, `pad on disc.mu` gives `pad_on_disc.mu`.
+       */
+      std::string
+      column(const std::string &qualifier = "") const;
     };
 
     /** The scene interface: see the file comment. */
@@ -245,6 +280,49 @@ namespace squeal
       std::vector<SpringSet>   springs;       ///< springs to ground
       std::vector<Probe>       probes;        ///< named points
       std::vector<LumpedMass>  masses;        ///< added masses
+      /// Rayleigh damping of the bodies without their own: named
+      /// parameters `damping.alpha` [1/s] and `damping.beta` [s]
+      double damping_alpha = 0.;
+      double damping_beta  = 0.; ///< see damping_alpha [s]
+
+      /**
+       * The named parameters of the scene with their nominal values, in
+       * this order: per body `.E`, `.rho` (and `.alpha`, `.beta` with its
+       * own damping), per contact pair `.mu`, `.k_n`, per spring set `.k`,
+       * then `damping.alpha`, `damping.beta`.
+       * @throws std::runtime_error if two items give the same name.
+       */
+      std::vector<NamedParameter>
+      parameters() const;
+
+      /**
+       * The parameter called @p name.
+       * @throws std::runtime_error naming it and listing the scene's.
+       */
+      NamedParameter
+      parameter(const std::string &name) const;
+
+      /**
+       * Makes @p value [its unit] the nominal value of the parameter called
+       * @p name: the item it names changes (an anisotropic body's tensor
+       * is scaled with its modulus).
+       * @throws std::runtime_error as parameter() on an unknown name.
+       */
+      void
+      set_nominal(const std::string &name, double value);
+
+      /** Every named parameter at its nominal value. */
+      parameters::ScalarPoint
+      nominal_point() const;
+
+      /**
+       * The friction coefficient [-] of every contact pair at @p p, for the
+       * analyses that solve one Coulomb law for all pairs (preload,
+       * braking).
+       * @throws std::runtime_error naming the pairs if they differ.
+       */
+      double
+      common_friction_coefficient(const parameters::ScalarPoint &p) const;
 
       /**
        * The body with material id @p id.
@@ -254,17 +332,14 @@ namespace squeal
       body(dealii::types::material_id id) const;
 
       /**
-       * The density [kg/m^3] of body @p id at the sweep point @p p: the
-       * swept support density for a density_swept body, its material's
-       * otherwise.
+       * The density [kg/m^3] of body @p id at @p p: `<body>.rho`.
        */
       double
       density(dealii::types::material_id     id,
               const parameters::ScalarPoint &p) const;
 
       /**
-       * Young's modulus [Pa] of body @p id at @p p: the swept pad modulus
-       * for a modulus_swept body, its material's otherwise.
+       * Young's modulus [Pa] of body @p id at @p p: `<body>.E`.
        */
       double
       youngs_modulus(dealii::types::material_id     id,
@@ -295,6 +370,17 @@ namespace squeal
      */
     std::unique_ptr<Scene>
     make_scene(const parameters::AllParameters &prm);
+
+    /**
+     * Every point of @p sweep on @p scene: the nominal point with the first
+     * parameter set to each of its values, for each value of the second
+     * (second outermost).
+     * @throws std::runtime_error naming the Sweep entry if a parameter is
+     * not one of the scene's (listing them), both axes name the same one,
+     * or a value is outside the parameter's allowed range.
+     */
+    std::vector<parameters::ScalarPoint>
+    sweep_points(const Scene &scene, const parameters::Sweep &sweep);
 
     /**
      * Checks that @p scene has what Scene/Analysis @p analysis needs: the
