@@ -404,8 +404,31 @@ namespace squeal
     BrakingAnalysis::assemble_load()
     {
       TimerOutput::Scope t(timer, "setup");
-      load =
-        contact::scene_load(model, constraints, prm.transient.normal_force);
+      // one load vector per ramp time
+      loads.clear();
+      total_load      = 0.;
+      ramp_end        = 0.;
+      const auto &all = model.scene->loads;
+      for (unsigned int l = 0; l < all.size(); ++l)
+        {
+          const double T =
+            all[l].ramp < 0. ? prm.transient.ramp_duration : all[l].ramp;
+          double     force = 0.;
+          const auto f     = contact::scene_load(
+            model, constraints, prm.transient.normal_force, l, &force);
+          total_load += force;
+          ramp_end = std::max(ramp_end, T);
+          const auto same =
+            std::find_if(loads.begin(), loads.end(), [T](const auto &g) {
+              return g.first == T;
+            });
+          if (same == loads.end())
+            loads.emplace_back(T, f);
+          else
+            same->second += f;
+        }
+      if (loads.empty())
+        contact::scene_load(model, constraints, 0.); // throws: no load
     }
 
     void
@@ -529,7 +552,9 @@ namespace squeal
         {
           {
             TimerOutput::Scope ts(timer, "time steps");
-            f.equ(ramp(k * dt, tr.ramp_duration), load);
+            f.equ(ramp(k * dt, loads[0].first), loads[0].second);
+            for (unsigned int g = 1; g < loads.size(); ++g)
+              f.add(ramp(k * dt, loads[g].first), loads[g].second);
             d.step(f);
           }
           if (k % every == 0)

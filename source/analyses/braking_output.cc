@@ -185,7 +185,6 @@ namespace squeal
     std::pair<Spectrum, Spectrum>
     BrakingAnalysis::evaluate_run(const double t_spec)
     {
-      const auto         &tr   = prm.transient;
       const double        rate = history.sampling_rate;
       std::vector<double> acc, vel, vel_after_ramp;
       double              t_after_ramp = -1.;
@@ -200,7 +199,7 @@ namespace squeal
               acc.push_back(a_t);
               vel.push_back(v_t);
             }
-          if (row[0] >= tr.ramp_duration)
+          if (row[0] >= ramp_end)
             {
               if (t_after_ramp < 0.)
                 t_after_ramp = row[0];
@@ -240,11 +239,11 @@ namespace squeal
             }
         }
       // Separation after the ramp and the leading-edge pressure range.
-      const double p_mean = tr.normal_force / mortar.slave_area;
+      const double p_mean = total_load / mortar.slave_area;
       double       p_lo = 1e300, p_hi = 0.;
       for (unsigned int i = 0; i < history.time.size(); ++i)
         {
-          if (history.time[i] < tr.ramp_duration)
+          if (history.time[i] < ramp_end)
             continue;
           for (unsigned int j = 0; j < mortar.n_slave(); ++j)
             if (history.status[j][i] == 0)

@@ -163,7 +163,9 @@ namespace squeal
     Vector<double>
     scene_load(const physics::StructuralModel  &model,
                const AffineConstraints<double> &constraints,
-               const double                     force)
+               const double                     force,
+               const int                        only,
+               double                          *total)
     {
       if (model.scene->loads.empty())
         throw std::runtime_error("scene " + model.scene->description() +
@@ -178,9 +180,14 @@ namespace squeal
                          update_values | update_JxW_values);
       Vector<double>                       cell_f(fe.n_dofs_per_cell());
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-      // Each load: a uniform traction force / area on its faces.
-      for (const scene::Load &applied : model.scene->loads)
+      // Each load: a uniform traction on its faces.
+      if (total)
+        *total = 0.;
+      for (unsigned int l = 0; l < model.scene->loads.size(); ++l)
         {
+          const scene::Load &applied = model.scene->loads[l];
+          if (only >= 0 && static_cast<unsigned int>(only) != l)
+            continue;
           double area = 0.;
           for (const auto &cell : model.dof_handler.active_cell_iterators())
             for (const unsigned int f : cell->face_indices())
@@ -194,7 +201,13 @@ namespace squeal
           if (!(area > 0.))
             throw std::runtime_error("load '" + applied.name +
                                      "': its face set has no faces");
-          const double traction = force / area;
+          using Magnitude = scene::Load::Magnitude;
+          const double traction =
+            applied.magnitude == Magnitude::pressure ? applied.value :
+            applied.magnitude == Magnitude::force    ? applied.value / area :
+                                                       force / area;
+          if (total)
+            *total += traction * area;
           for (const auto &cell : model.dof_handler.active_cell_iterators())
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary() &&

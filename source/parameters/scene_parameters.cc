@@ -90,9 +90,13 @@ namespace squeal
       prm.declare_entry("Loads",
                         loads,
                         Patterns::Anything(),
-                        "name: set=<face set>, direction=dx dy dz: the "
-                        "preload's and the braking run's normal force, spread "
-                        "uniformly over the faces along the direction.");
+                        "name: set=<face set>, direction=dx dy dz[, force=F "
+                        "[N] | pressure=p [Pa], ramp=T [s]]: a uniform "
+                        "traction on the faces along the direction, of F in "
+                        "all, of p, or (neither given) the preload's and the "
+                        "braking run's normal force in all; a braking run "
+                        "ramps it up over T (default Transient/Ramp "
+                        "duration).");
       prm.declare_entry(
         "Springs",
         springs,

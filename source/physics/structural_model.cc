@@ -426,13 +426,18 @@ namespace squeal
                                  MatrixParts::Kind::interface_normal,
                                  "normal interface " + pair.name,
                                  k_n,
-                                 reference_of(k_n)});
+                                 reference_of(k_n),
+                                 "",
+                                 "",
+                                 false});
           parts.parts.push_back({&Kt,
                                  MatrixParts::Kind::interface_friction,
                                  "friction " + pair.name,
                                  k_n,
                                  reference_of(k_n),
-                                 pair.name + ".mu"});
+                                 pair.name + ".mu",
+                                 "",
+                                 false});
         }
       part_matrices.resize(next_part);
       pattern.reset();

@@ -438,10 +438,36 @@ namespace squeal
              component_of(item, "component", c.size() == 1 ? c[0] : '?')});
         }
       for (const Item &item :
-           parse_list("Loads", mf.loads, {"set", "direction"}))
-        loads.push_back({item.name,
-                         face_id(item, item.text("set")),
-                         item.unit("direction", "")});
+           parse_list("Loads",
+                      mf.loads,
+                      {"set", "direction", "force", "pressure", "ramp"}))
+        {
+          Load load{item.name,
+                    face_id(item, item.text("set")),
+                    item.unit("direction", "")};
+          if (item.has("force") && item.has("pressure"))
+            throw std::runtime_error(item.where() +
+                                     ": give force= or pressure=, not both");
+          if (item.has("force") || item.has("pressure"))
+            {
+              load.magnitude = item.has("force") ? Load::Magnitude::force :
+                                                   Load::Magnitude::pressure;
+              load.value =
+                item.number(item.has("force") ? "force" : "pressure");
+              if (!(load.value >= 0.) || !std::isfinite(load.value))
+                throw std::runtime_error(
+                  item.where() + ": force [N] and pressure [Pa] must be >= 0 "
+                                 "(the direction gives the sense)");
+            }
+          if (item.has("ramp"))
+            {
+              load.ramp = item.number("ramp");
+              if (!(load.ramp >= 0.) || !std::isfinite(load.ramp))
+                throw std::runtime_error(item.where() +
+                                         ": ramp must be >= 0 [s]");
+            }
+          loads.push_back(load);
+        }
       for (const Item &item : parse_list("Probes", mf.probes, {"point"}))
         probes.push_back({item.name, Point<3>(item.vector("point"))});
       for (const Item &item :

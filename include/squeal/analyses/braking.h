@@ -174,11 +174,14 @@ namespace squeal
       dealii::SparsityPattern           pattern;
       dealii::SparseMatrix<double>      stiffness;
       dealii::Vector<double>            mass; ///< lumped [kg]
-      dealii::Vector<double>            load; ///< at the full normal force [N]
-      std::vector<bool>                 fixed;
-      std::vector<dealii::Point<3>>     points;    ///< support point per DoF
-      std::vector<unsigned int>         component; ///< 0, 1, 2 per DoF
-      contact::MortarOperators          mortar;
+      /// the loads at full force [N], one vector per ramp time [s]
+      std::vector<std::pair<double, dealii::Vector<double>>> loads;
+      double            total_load = 0.; ///< the loads' total force [N]
+      double            ramp_end   = 0.; ///< the longest ramp [s]
+      std::vector<bool> fixed;
+      std::vector<dealii::Point<3>> points;    ///< support point per DoF
+      std::vector<unsigned int>     component; ///< 0, 1, 2 per DoF
+      contact::MortarOperators      mortar;
       std::unique_ptr<transient::ElasticityOperator> matrix_free;
       std::unique_ptr<transient::ExplicitDynamics>   dynamics;
 

@@ -92,17 +92,22 @@ namespace squeal
                    MPI_Comm                           comm);
 
     /**
-     * The load vector [N]: for each of the scene's loads, @p force [N]
-     * spread uniformly over its faces along its direction (the TriboBrake:
-     * the support's top, pushing the pad towards the disc, -z; two pads of
-     * a caliper: each pressed by @p force), with @p constraints.
+     * The load vector [N] of the scene's loads (all, or only load number
+     * @p only), with @p constraints: each a uniform traction on its faces
+     * along its direction, of @p force [N] in all (a load of magnitude
+     * `analysis`: the TriboBrake's support top, pushing the pad towards
+     * the disc, -z; two pads of a caliper each pressed by @p force), its
+     * own force [N] in all, or its pressure [Pa]. @p total, if given,
+     * receives the sum of the loads' total forces [N].
      * @throws std::runtime_error if the scene has no load or a load's face
      * set is empty.
      */
     dealii::Vector<double>
     scene_load(const physics::StructuralModel          &model,
                const dealii::AffineConstraints<double> &constraints,
-               double                                   force);
+               double                                   force,
+               int                                      only  = -1,
+               double                                  *total = nullptr);
 
   } // namespace contact
 } // namespace squeal

@@ -170,13 +170,29 @@ namespace squeal
       unsigned int     component = 0; ///< 0, 1, 2
     };
 
-    /** A total force spread uniformly over a face set. */
+    /**
+     * A load on a face set: a total force spread uniformly over its faces,
+     * or a uniform pressure, along a direction; in a braking run ramped up
+     * over its own time.
+     */
     struct Load
     {
+      /// what sets its magnitude
+      enum class Magnitude
+      {
+        analysis, ///< the analysis' normal force [N] (Preload, Transient)
+        force,    ///< @ref value [N] in all
+        pressure  ///< @ref value [Pa] on every face
+      };
       std::string                name;   ///< as in logs and errors
       dealii::types::boundary_id id = 0; ///< boundary id of its faces
-      /// unit direction of the force (its magnitude is the analysis')
+      /// unit direction of the force
       dealii::Tensor<1, 3> direction;
+      Magnitude            magnitude = Magnitude::analysis; ///< see Magnitude
+      double               value     = 0.; ///< force [N] or pressure [Pa]
+      /// braking: its ramp time [s] (smooth, half-cosine); < 0: the run's
+      /// Transient/Ramp duration
+      double ramp = -1.;
     };
 
     /**
