@@ -294,9 +294,11 @@ namespace squeal
             if (e->column() == i && !fixed[i])
               springs[i] = e->value();
             else if (e->value() != 0. && !fixed[i])
-              throw std::runtime_error("the support's springs couple two DoFs: "
-                                       "the matrix-free product needs them "
-                                       "grounded");
+              throw std::runtime_error(
+                "the scene's springs couple two DoFs (springs between two "
+                "bodies, or spread over a face): the matrix-free product "
+                "takes springs to ground at single nodes; set "
+                "Transient/Stiffness product = sparse (serial runs)");
         matrix_free = std::make_unique<ElasticityOperator>(
           model.dof_handler,
           model.mapping,

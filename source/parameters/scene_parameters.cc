@@ -102,10 +102,12 @@ namespace squeal
         springs,
         Patterns::Anything(),
         "name: body=<body>, direction=dx dy dz, points=x y z | x y z | ... "
-        "or nodes=<node set>[, radius=a [m], k=<N/m>]: springs to ground of "
-        "stiffness k each (default Springs/Stiffness), on the body's "
-        "boundary faces through the points, each spread over radius a "
-        "(default Springs/Attachment radius; 0: the nearest node). Named "
+        "or nodes=<node set>[, radius=a [m], k=<N/m>, to=<body>]: springs to "
+        "ground of stiffness k each (default Springs/Stiffness), on the "
+        "body's boundary faces through the points, each spread over radius "
+        "a (default Springs/Attachment radius; 0: the nearest node); with "
+        "to=, each spring joins the node of the body nearest its point to "
+        "the node of the other body nearest it (no radius). Named "
         "parameter <name>.k.");
       prm.declare_entry("Probes",
                         probes,

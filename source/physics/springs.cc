@@ -24,6 +24,28 @@ namespace squeal
                                  const double            k,
                                  ConditionalOStream     &pcout)
     {
+      if (s.to_body)
+        {
+          // k d d^T on the relative displacement of the two nodes
+          const auto         pairs = two_body_spring_nodes(s);
+          FullMatrix<double> local(6, 6);
+          for (unsigned int i = 0; i < 6; ++i)
+            for (unsigned int j = 0; j < 6; ++j)
+              local(i, j) = (i / 3 == j / 3 ? k : -k) * s.direction[i % 3] *
+                            s.direction[j % 3];
+          for (const auto &dofs : pairs)
+            if (locally_owned_dofs.is_element(dofs[0]))
+              {
+                std::vector<types::global_dof_index> d(dofs.begin(),
+                                                       dofs.end());
+                constraints.distribute_local_to_global(local, d, K);
+              }
+          K.compress(VectorOperation::add);
+          pcout << "Springs '" << s.name << "': " << pairs.size() << " x " << k
+                << " N/m along (" << s.direction
+                << ") between two bodies, node to node" << std::endl;
+          return;
+        }
       const std::vector<Point<3>> &stations = s.stations;
       if (stations.empty())
         return;
@@ -253,6 +275,54 @@ namespace squeal
               constraints.distribute_local_to_global(cell_k, dofs, K);
             }
         }
+    }
+
+    std::vector<std::array<types::global_dof_index, 6>>
+    StructuralModel::two_body_spring_nodes(const scene::SpringSet &s) const
+    {
+      const unsigned int                   n = fe.n_dofs_per_cell();
+      std::vector<types::global_dof_index> dofs(n);
+      const auto                          &unit = fe.get_unit_support_points();
+      std::vector<std::array<types::global_dof_index, 6>> result(
+        s.stations.size());
+      for (unsigned int side = 0; side < 2; ++side)
+        {
+          const types::material_id body = side == 0 ? s.body : s.other;
+          std::vector<double>      best(s.stations.size(), 1e300);
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (!cell->is_artificial() && cell->material_id() == body)
+              {
+                cell->get_dof_indices(dofs);
+                for (unsigned int k = 0; k < n; ++k)
+                  if (fe.system_to_component_index(k).first == 0 &&
+                      !(constraints.is_constrained(dofs[k]) &&
+                        !constraints.get_constraint_entries(dofs[k])->empty()))
+                    {
+                      const Point<3> x =
+                        mapping.transform_unit_to_real_cell(cell, unit[k]);
+                      const unsigned int base =
+                        fe.system_to_component_index(k).second;
+                      for (unsigned int i = 0; i < s.stations.size(); ++i)
+                        {
+                          const double d = x.distance(s.stations[i]);
+                          if (d < best[i] - 1e-12 ||
+                              (d < best[i] + 1e-12 &&
+                               dofs[k] < result[i][3 * side]))
+                            {
+                              best[i] = std::min(best[i], d);
+                              for (unsigned int c = 0; c < 3; ++c)
+                                result[i][3 * side + c] =
+                                  dofs[fe.component_to_system_index(c, base)];
+                            }
+                        }
+                    }
+              }
+          for (const double d : best)
+            if (d == 1e300)
+              throw std::runtime_error("springs '" + s.name +
+                                       "': a body they join has no node");
+        }
+      return result;
     }
 
     // Stations with no node inside the radius (or radius 0): the nearest

@@ -374,6 +374,13 @@ namespace squeal
                                       false);
       for (const auto &interface_points : pair_points)
         add_interface_sparsity(interface_points, constraints, *pattern);
+      for (const scene::SpringSet &s : scene->springs)
+        if (s.to_body)
+          for (const auto &dofs : two_body_spring_nodes(s))
+            {
+              std::vector<types::global_dof_index> d(dofs.begin(), dofs.end());
+              constraints.add_entries_local_to_global(d, *pattern, false);
+            }
       SparsityTools::distribute_sparsity_pattern(*pattern,
                                                  locally_owned_dofs,
                                                  comm,

@@ -260,7 +260,7 @@ namespace squeal
           for (const unsigned int b : body_of_faces(hold.id))
             net.join(b, ground);
         for (const SpringSet &s : scene.springs)
-          net.join(s.body, ground);
+          net.join(s.body, s.to_body ? s.other : ground);
         for (const PointHold &hold : scene.point_holds)
           {
             unsigned int best = 0;

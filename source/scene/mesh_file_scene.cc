@@ -490,10 +490,10 @@ namespace squeal
         }
 
       // Springs: each station on a boundary face of its body.
-      for (const Item &item :
-           parse_list("Springs",
-                      mf.springs,
-                      {"body", "direction", "points", "nodes", "radius", "k"}))
+      for (const Item &item : parse_list(
+             "Springs",
+             mf.springs,
+             {"body", "direction", "points", "nodes", "radius", "k", "to"}))
         {
           SpringSet s;
           s.name                      = item.name;
@@ -505,12 +505,32 @@ namespace squeal
           if (it == bodies.end())
             throw std::runtime_error(item.where() + ": no body '" + body_name +
                                      "' in " + prefix + "Bodies");
-          s.body      = it->id;
+          s.body = it->id;
+          if (item.has("to"))
+            {
+              const std::string other = item.text("to");
+              const auto        jt =
+                std::find_if(bodies.begin(), bodies.end(), [&](const Body &b) {
+                  return b.name == other;
+                });
+              if (jt == bodies.end() || jt == it)
+                throw std::runtime_error(item.where() + ": to = '" + other +
+                                         "' must name another body of " +
+                                         prefix + "Bodies");
+              if (item.has("radius"))
+                throw std::runtime_error(
+                  item.where() + ": springs between two bodies join the nodes "
+                                 "nearest each station; remove radius=");
+              s.to_body = true;
+              s.other   = jt->id;
+            }
           s.direction = item.unit("direction", "");
           s.stiffness = item.number("k", prm.springs.stiffness);
           if (!(s.stiffness >= 0.))
             throw std::runtime_error(item.where() + ": k must be >= 0 [N/m]");
-          s.radius = item.number("radius", prm.springs.attachment_radius);
+          s.radius = s.to_body ?
+                       0. :
+                       item.number("radius", prm.springs.attachment_radius);
           if (!(s.radius >= 0.))
             throw std::runtime_error(item.where() + ": radius must be >= 0");
           if (item.has("points") == item.has("nodes"))
@@ -525,8 +545,9 @@ namespace squeal
               item, [&]() -> const auto & {
                 return sets.nodes(item.text("nodes"));
               });
-          place_stations(
-            item, body_name, sets.cells(body_sets[s.body]), cells, s);
+          if (!s.to_body) // two bodies' springs sit at nodes, not on faces
+            place_stations(
+              item, body_name, sets.cells(body_sets[s.body]), cells, s);
           springs.push_back(s);
         }
 

@@ -355,6 +355,13 @@ namespace squeal
                   PETScMatrix                &K,
                   double                      k,
                   dealii::ConditionalOStream &pcout);
+      /// springs between two bodies (scene::SpringSet::to_body): per
+      /// station the x, y, z DoFs of the node of the first body nearest it,
+      /// then those of the second body's (unconstrained-by-hanging nodes;
+      /// the lowest DoF among equally near ones), the same on every rank
+      /// @throws std::runtime_error if a body has no node
+      std::vector<std::array<dealii::types::global_dof_index, 6>>
+      two_body_spring_nodes(const scene::SpringSet &s) const;
       /// a new zero part matrix on the common pattern
       PETScMatrix &
       new_part_matrix();

@@ -201,6 +201,9 @@ namespace squeal
      * Winkler layer of stiffness density k w(x) / int(w) [N/m^3], w the
      * cosine bell), acting along @ref direction. A station no node lies
      * within the radius of (or radius 0) goes to the nearest node.
+     * Between two bodies (@ref to_body): each station's spring joins the
+     * node of @ref body nearest it to the node of the other body nearest
+     * it, along @ref direction (a pad's ear sprung against an abutment).
      */
     struct SpringSet
     {
@@ -213,6 +216,10 @@ namespace squeal
       double stiffness = 0.;
       double radius    = 0.;   ///< m
       double tolerance = 1e-9; ///< m, distance of a face from a station's plane
+      /// the springs join @ref body to @ref other (not to ground)
+      bool to_body = false;
+      /// to_body: the material id of the second body
+      dealii::types::material_id other = 0;
     };
 
     /**
