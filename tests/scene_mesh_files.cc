@@ -516,8 +516,8 @@ main(int argc, char **argv)
               error_of([&] {
                 io::read_mesh_file(inp("brake.stl", "solid"), 1., tria);
               }),
-              "unknown format '.stl'; squeal reads Gmsh (.msh) and "
-              "Abaqus/CalculiX (.inp) meshes");
+              "unknown format '.stl'; squeal reads Gmsh (.msh), "
+              "Abaqus/CalculiX (.inp) and VTK (.vtu) meshes");
   check_error("a missing file",
               error_of(
                 [&] { io::read_mesh_file("no_such_mesh.msh", 1., tria); }),

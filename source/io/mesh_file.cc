@@ -14,6 +14,7 @@
 #include <squeal/io/quadratic_hex_manifold.h>
 
 #include "abaqus_numbering.h"
+#include "element_mesh.h"
 
 #include <algorithm>
 #include <array>
@@ -268,6 +269,31 @@ namespace squeal
         explicit InpReader(const std::string &file)
           : file(file)
         {}
+
+        /// Takes the nodes, elements and sets of @p mesh (a file read
+        /// elsewhere) instead of read().
+        void
+        load(const internal::ElementMesh &mesh)
+        {
+          nodes = mesh.nodes;
+          for (const auto &e : mesh.elements)
+            {
+              if (!element_ids.insert(e.id).second)
+                fail("element " + std::to_string(e.id) + " is defined twice");
+              elements.push_back({e.id, e.corners, e.midside, 0});
+            }
+          for (const auto &[name, ids] : mesh.element_sets)
+            elsets[upper(name)] = {name, ids, {}};
+          for (const auto &[name, ids] : mesh.node_sets)
+            nsets[upper(name)] = {name, ids, {}};
+          for (const auto &[name, faces] : mesh.surfaces)
+            {
+              auto &s = surfaces[upper(name)];
+              s.first = name;
+              for (const auto &[element, face] : faces)
+                s.second.push_back({std::to_string(element), face, 0});
+            }
+        }
 
         void
         read()
@@ -535,8 +561,11 @@ namespace squeal
         [[noreturn]] void
         fail_at(const unsigned int line, const std::string &what) const
         {
-          throw std::runtime_error("mesh file '" + file + "', line " +
-                                   std::to_string(line) + ": " + what);
+          // line 0: a file without lines (load())
+          throw std::runtime_error(
+            "mesh file '" + file +
+            (line > 0 ? "', line " + std::to_string(line) : std::string("'")) +
+            ": " + what);
         }
 
         long
@@ -804,10 +833,29 @@ namespace squeal
           reader.read();
           return reader.build(length_unit, tria);
         }
+      if (upper(ext) == ".VTU")
+        return internal::build_element_mesh(internal::read_vtu(filename),
+                                            filename,
+                                            length_unit,
+                                            tria);
       throw std::runtime_error("mesh file '" + filename +
                                "': unknown format '" + ext +
-                               "'; squeal reads Gmsh (.msh) and "
-                               "Abaqus/CalculiX (.inp) meshes");
+                               "'; squeal reads Gmsh (.msh), "
+                               "Abaqus/CalculiX (.inp) and VTK (.vtu) meshes");
     }
-  } // namespace io
+
+    namespace internal
+    {
+      NamedSets
+      build_element_mesh(const ElementMesh &mesh,
+                         const std::string &file,
+                         const double       unit,
+                         Triangulation<3>  &tria)
+      {
+        InpReader reader(file);
+        reader.load(mesh);
+        return reader.build(unit, tria);
+      }
+    } // namespace internal
+  }   // namespace io
 } // namespace squeal

@@ -32,9 +32,11 @@ namespace squeal
                         file,
                         Patterns::Anything(),
                         "The hexahedral mesh: Gmsh .msh (ASCII 2.2 or 4.1; "
-                        "physical groups name the cell and face sets) or "
+                        "physical groups name the cell and face sets), "
                         "Abaqus/CalculiX .inp (*ELSET, *SURFACE, *NSET; "
-                        "exported names are upper case). A relative path is "
+                        "exported names are upper case) or VTK .vtu "
+                        "(hexahedra, quadrilaterals naming faces, cell and "
+                        "point data arrays naming sets). A relative path is "
                         "taken from the parameter file's folder.");
       prm.declare_entry("Length unit",
                         str(length_unit),

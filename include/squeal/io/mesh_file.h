@@ -16,7 +16,14 @@
  * gets a manifold of its own (the 20-node serendipity map, manifold id
  * 1000 + its coarse cell index) on its cell, faces and edges, so refinement
  * and a higher-degree MappingQ follow the element's curvature. Gmsh's
- * second-order hexahedra are not read (use first order, or .inp). Bodies meshed
+ * second-order hexahedra are not read (use first order, .inp or .vtu).
+ * VTK unstructured grids `.vtu` through VTK's XML reader: hexahedra (VTK
+ * types 12, 25 = 20 nodes in the C3D20 order, 29 = 27 nodes, its face and
+ * centre nodes dropped) make the cells, quadrilaterals (9, 23, 28) name
+ * their faces; every one-component cell or point data array names sets:
+ * an array of 0/1 values is the set called like the array (hexahedra:
+ * a cell set, quadrilaterals: a face set, points: a node set), any other
+ * one set per non-zero value, called `<array>=<value>`. Bodies meshed
  * separately stay separate: coincident nodes of two bodies are not merged.
  *
  * Write: the coarse mesh and its sets as an Abaqus/CalculiX `.inp` (C3D8,
@@ -44,8 +51,8 @@ namespace squeal
   namespace io
   {
     /**
-     * Reads the hexahedral mesh @p filename (`.msh` or `.inp`, chosen by the
-     * extension) into the empty @p tria, every coordinate multiplied by
+     * Reads the hexahedral mesh @p filename (`.msh`, `.inp` or `.vtu`,
+     * chosen by the extension) into the empty @p tria, every coordinate multiplied by
      * @p length_unit [m per file unit: 1e-3 for a mesh in mm], and returns
      * its named sets. Material and boundary ids are left 0: the scene
      * assigns them from the sets.
