@@ -10,6 +10,7 @@
 
 #include <squeal/analyses/braking.h>
 #include <squeal/analyses/preload.h>
+#include <squeal/contact/scene_contact.h>
 #include <squeal/io/output_directory.h>
 
 #include <algorithm>
@@ -70,6 +71,7 @@ namespace squeal
     {
       model.nominal_overrides = point;
       model.varied            = std::set<std::string>(); // nothing is swept
+      model.tie_constraints   = contact::add_tie_constraints;
     }
 
     void
@@ -88,6 +90,12 @@ namespace squeal
       prepare_work_dir();
       model.lumped_springs = true; // the matrix-free product grounds each DoF
       model.setup_and_assemble(pcout);
+      if (!model.scene->ties.empty())
+        throw std::runtime_error(
+          "scene " + model.scene->description() + " has ties ('" +
+          model.scene->ties.front().name +
+          "'): the braking run's lumped mass and explicit step take holds "
+          "only; mesh the bonded bodies with shared nodes");
       for (const auto &line : model.constraints.get_lines())
         if (!line.entries.empty())
           throw std::runtime_error(

@@ -11,6 +11,7 @@
 
 #include <squeal/analyses/cea.h>
 #include <squeal/analyses/preload.h>
+#include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/mac.h>
 #include <squeal/io/output_directory.h>
 
@@ -40,7 +41,8 @@ namespace squeal
       , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
       , model(std::make_unique<physics::StructuralModel>(prm, comm))
     {
-      model->varied = varied_parameters();
+      model->varied          = varied_parameters();
+      model->tie_constraints = contact::add_tie_constraints;
     }
 
     std::set<std::string>

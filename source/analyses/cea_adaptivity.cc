@@ -173,8 +173,9 @@ namespace squeal
         parameters::AllParameters prm_rich = prm;
         prm_rich.mesh.fe_degree += extra;
         physics::StructuralModel rich(prm_rich, model.comm);
-        rich.interface_mask = model.interface_mask;
-        rich.varied         = model.varied;
+        rich.interface_mask  = model.interface_mask;
+        rich.varied          = model.varied;
+        rich.tie_constraints = model.tie_constraints;
         rich.setup_and_assemble(quiet);
         rich.replay_refinement(model.refinement_history, quiet);
         n_dofs = rich.n_dofs();
@@ -562,8 +563,9 @@ namespace squeal
       auto raised = std::make_unique<parameters::AllParameters>(model->prm);
       raised->mesh.fe_degree = degree + 1;
       auto rebuilt = std::make_unique<physics::StructuralModel>(*raised, comm);
-      rebuilt->interface_mask = model->interface_mask;
-      rebuilt->varied         = model->varied;
+      rebuilt->interface_mask  = model->interface_mask;
+      rebuilt->varied          = model->varied;
+      rebuilt->tie_constraints = model->tie_constraints;
       rebuilt->setup_and_assemble(quiet);
       rebuilt->replay_refinement(model->refinement_history, quiet);
       model      = std::move(rebuilt); // the old model first,

@@ -10,6 +10,7 @@
 #include <deal.II/numerics/data_out_faces.h>
 
 #include <squeal/analyses/preload.h>
+#include <squeal/contact/scene_contact.h>
 #include <squeal/io/face_output.h>
 #include <squeal/io/output_directory.h>
 
@@ -40,6 +41,7 @@ namespace squeal
       , model(prm, comm)
     {
       model.varied = std::set<std::string>(); // one point: nothing varies
+      model.tie_constraints = contact::add_tie_constraints;
     }
 
     void

@@ -156,8 +156,50 @@ namespace squeal
                                  std::vector<types::global_dof_index>{},
                                diag);
         }
+      if (!model.scene->ties.empty())
+        add_tie_constraints(model, constraints);
       constraints.close();
       return points[held];
+    }
+
+    void
+    add_tie_constraints(const physics::StructuralModel &model,
+                        AffineConstraints<double>      &constraints)
+    {
+      for (const scene::Tie &tie : model.scene->ties)
+        {
+          MortarOperators op;
+          try
+            {
+              op = build_mortar_operators(model.dof_handler,
+                                          model.mapping,
+                                          tie.slave,
+                                          tie.master,
+                                          model.prm.preload.search_distance);
+            }
+          catch (const std::exception &e)
+            {
+              throw std::runtime_error("tie '" + tie.name + "': " + e.what());
+            }
+          for (unsigned int j = 0; j < op.n_slave(); ++j)
+            {
+              double sum = 0.;
+              for (const auto &[l, m] : op.M[j])
+                sum += m;
+              if (!(sum > 0.))
+                continue; // no master under it
+              for (unsigned int c = 0; c < 3; ++c)
+                {
+                  const auto dof = op.slave_dofs[j][c];
+                  if (constraints.is_constrained(dof))
+                    continue;
+                  constraints.add_line(dof);
+                  for (const auto &[l, m] : op.M[j])
+                    if (op.master_dofs[l][c] != dof && m != 0.)
+                      constraints.add_entry(dof, op.master_dofs[l][c], m / sum);
+                }
+            }
+        }
     }
 
     Vector<double>

@@ -77,6 +77,16 @@ namespace squeal
         "about the disc's axis in Interface/Rotation sense. mu and k_n "
         "default to Interface/Friction coefficient and Normal stiffness; "
         "named parameters <name>.mu and <name>.k_n.");
+      prm.declare_entry(
+        "Ties",
+        ties,
+        Patterns::Anything(),
+        "name: slave=<face set>, master=<face set>: a bonded interface "
+        "between bodies meshed apart (a friction material on its backplate): "
+        "every slave node moves with the master surface, u_j = sum_l "
+        "(M_jl / sum_l M_jl) u_l by dual mortar (the operators of the "
+        "contact pairs, Preload/Search distance as the reach). The slave "
+        "is best the finer side. Not in the braking run.");
       prm.declare_entry("Holds",
                         holds,
                         Patterns::Anything(),
@@ -134,6 +144,7 @@ namespace squeal
       length_unit   = prm.get_double("Length unit");
       bodies        = prm.get("Bodies");
       contact_pairs = prm.get("Contact pairs");
+      ties          = prm.get("Ties");
       holds         = prm.get("Holds");
       point_holds   = prm.get("Point holds");
       loads         = prm.get("Loads");

@@ -324,8 +324,17 @@ namespace squeal
       DoFTools::extract_locally_relevant_dofs(dof_handler,
                                               locally_relevant_dofs);
 
+      // With ties, every rank holds every constraint (a slave node's master
+      // nodes need not be among its relevant DoFs; the mesh is whole on
+      // every rank).
+      const bool tied = !scene->ties.empty();
+      if (tied && !tie_constraints)
+        throw std::runtime_error(
+          "scene " + scene->description() +
+          " has ties, and this analysis builds its model without them");
       constraints.clear();
-      constraints.reinit(locally_relevant_dofs);
+      constraints.reinit(tied ? complete_index_set(dof_handler.n_dofs()) :
+                                locally_relevant_dofs);
       DoFTools::make_hanging_node_constraints(dof_handler, constraints);
       for (const scene::Hold &hold : scene->holds)
         VectorTools::interpolate_boundary_values(
@@ -336,6 +345,8 @@ namespace squeal
           constraints,
           ComponentMask(
             std::vector<bool>(hold.components.begin(), hold.components.end())));
+      if (tied)
+        tie_constraints(*this, constraints);
       constraints.close();
 
       // one list per contact pair

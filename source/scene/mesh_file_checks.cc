@@ -273,6 +273,10 @@ namespace squeal
                 }
             net.join(best, ground);
           }
+        for (const Tie &tie : scene.ties)
+          for (const unsigned int a : body_of_faces(tie.slave))
+            for (const unsigned int b : body_of_faces(tie.master))
+              net.join(a, b);
         for (const ContactPair &pair : scene.contact_pairs)
           for (const unsigned int a : body_of_faces(pair.slave))
             for (const unsigned int b : body_of_faces(pair.master))
@@ -284,8 +288,8 @@ namespace squeal
         if (!free.empty())
           throw std::runtime_error(
             description + ": nothing holds body " + free +
-            " (free-floating): give it a hold, a point hold, springs or a "
-            "contact pair, or share nodes with a held body");
+            " (free-floating): give it a hold, a point hold, springs, a "
+            "contact pair or a tie, or share nodes with a held body");
       }
     } // namespace internal
   }   // namespace scene

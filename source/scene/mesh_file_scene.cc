@@ -402,6 +402,16 @@ namespace squeal
           set_sliding(item, disc, sense, pair);
           contact_pairs.push_back(pair);
         }
+      for (const Item &item : parse_list("Ties", mf.ties, {"slave", "master"}))
+        {
+          Tie tie{item.name,
+                  face_id(item, item.text("slave")),
+                  face_id(item, item.text("master"))};
+          if (tie.slave == tie.master)
+            throw std::runtime_error(item.where() +
+                                     ": slave and master are one face set");
+          ties.push_back(tie);
+        }
       // a disc's theta = 0: towards the first pair
       for (Body &b : bodies)
         if (b.disc)

@@ -92,6 +92,25 @@ namespace squeal
                    MPI_Comm                           comm);
 
     /**
+     * The constraints of @p model's ties (bonded interfaces) into
+     * @p constraints (not closed): for each tie, the dual mortar operators
+     * D, M between its slave and master faces (build_mortar_operators(),
+     * Preload/Search distance as the reach), and for each slave node j and
+     * component c not already constrained (a hold, a hanging node)
+     *   u_jc = sum_l (M_jl / sum_k M_jk) u_lc,
+     * the mortar mesh tying of Wohlmuth (SIAM J. Numer. Anal. 38, 2000) with
+     * dual multipliers, which condenses to these constraints because D is
+     * diagonal (sum_k M_jk = D_jj where the master covers the slave node's
+     * support, so a rigid motion stays rigid; normalised where it covers it
+     * partly). A slave node the master does not reach stays free.
+     * @throws std::runtime_error naming the tie if its faces are empty or
+     * out of reach (as build_mortar_operators()).
+     */
+    void
+    add_tie_constraints(const physics::StructuralModel    &model,
+                        dealii::AffineConstraints<double> &constraints);
+
+    /**
      * The load vector [N] of the scene's loads (all, or only load number
      * @p only), with @p constraints: each a uniform traction on its faces
      * along its direction, of @p force [N] in all (a load of magnitude

@@ -35,6 +35,7 @@ namespace squeal
       double      length_unit = 1.; ///< m per mesh unit
       std::string bodies;           ///< the Bodies list (see its help)
       std::string contact_pairs;    ///< the Contact pairs list
+      std::string ties;             ///< the Ties list (bonded interfaces)
       std::string holds;            ///< the Holds list
       std::string point_holds;      ///< the Point holds list
       std::string loads;            ///< the Loads list

@@ -260,6 +260,17 @@ namespace squeal
        */
       std::vector<std::pair<std::string, double>> nominal_overrides;
 
+      /**
+       * Adds the constraints of the scene's ties (scene::Scene::ties,
+       * bonded interfaces) to the model's: a higher layer's
+       * (contact::add_tie_constraints, dual mortar). Set it before
+       * setup_and_assemble() when the scene has ties; setup_and_assemble()
+       * throws std::runtime_error if it has ties and this is unset.
+       */
+      std::function<void(const StructuralModel &,
+                         dealii::AffineConstraints<double> &)>
+        tie_constraints;
+
       /** Number of degrees of freedom. */
       dealii::types::global_dof_index
       n_dofs() const

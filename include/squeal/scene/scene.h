@@ -149,6 +149,17 @@ namespace squeal
       from_plane(const dealii::Point<2> &p) const;
     };
 
+    /**
+     * A bonded interface between two bodies meshed apart: the slave face
+     * set's nodes are tied to the master face set (dual mortar).
+     */
+    struct Tie
+    {
+      std::string                name;       ///< as in logs and errors
+      dealii::types::boundary_id slave  = 0; ///< the tied face set
+      dealii::types::boundary_id master = 0; ///< the face set it follows
+    };
+
     /** A face set held fixed in some displacement components. */
     struct Hold
     {
@@ -297,6 +308,7 @@ namespace squeal
 
       std::vector<Body>        bodies;        ///< one per material id
       std::vector<ContactPair> contact_pairs; ///< friction interfaces
+      std::vector<Tie>         ties;          ///< bonded interfaces
       std::vector<Hold>        holds;         ///< fixed faces
       std::vector<PointHold>   point_holds;   ///< single held components
       std::vector<Load>        loads;         ///< the analyses' normal force
