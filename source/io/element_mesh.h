@@ -58,6 +58,23 @@ namespace squeal
                          dealii::Triangulation<3> &tria);
 
       /**
+       * Whether the Gmsh file @p file holds second-order hexahedra (Gmsh
+       * element types 17 or 12); false if Gmsh cannot read it.
+       */
+      bool
+      has_second_order_hexahedra(const std::string &file);
+
+      /**
+       * Reads the Gmsh file @p file through Gmsh's API: hexahedra of first
+       * and second order, volume physical groups as cell sets, surface
+       * groups as face sets.
+       * @throws std::runtime_error naming the file on an element type squeal
+       * cannot use or a surface element that is no face of a hexahedron.
+       */
+      ElementMesh
+      read_gmsh_second_order(const std::string &file);
+
+      /**
        * Reads the VTK unstructured grid @p file (.vtu, through VTK's XML
        * reader) as described in read_mesh_file().
        * @throws std::runtime_error naming the file on an unreadable file,

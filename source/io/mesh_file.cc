@@ -156,6 +156,11 @@ namespace squeal
                 const double       unit,
                 Triangulation<3>  &tria)
       {
+        // second-order hexahedra: through Gmsh's API (GridIn reads first
+        // order only)
+        if (internal::has_second_order_hexahedra(file))
+          return internal::build_element_mesh(
+            internal::read_gmsh_second_order(file), file, unit, tria);
         std::ifstream     in(file);
         std::stringstream buffer;
         buffer << in.rdbuf();

@@ -16,7 +16,8 @@
  * gets a manifold of its own (the 20-node serendipity map, manifold id
  * 1000 + its coarse cell index) on its cell, faces and edges, so refinement
  * and a higher-degree MappingQ follow the element's curvature. Gmsh's
- * second-order hexahedra are not read (use first order, .inp or .vtu).
+ * second-order hexahedra (20 and 27 nodes) are read through Gmsh's API,
+ * curved as C3D20.
  * VTK unstructured grids `.vtu` through VTK's XML reader: hexahedra (VTK
  * types 12, 25 = 20 nodes in the C3D20 order, 29 = 27 nodes, its face and
  * centre nodes dropped) make the cells, quadrilaterals (9, 23, 28) name
