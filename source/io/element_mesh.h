@@ -44,6 +44,30 @@ namespace squeal
           surfaces;
       };
 
+      /// the faces of hexahedra by their sorted corner node ids
+      using FaceIndex =
+        std::map<std::array<long, 4>, std::pair<long, unsigned int>>;
+
+      /**
+       * Every face of @p mesh's hexahedra: its sorted corner node ids ->
+       * (element id, Abaqus face 1-6).
+       */
+      FaceIndex
+      hexahedron_faces(const ElementMesh &mesh);
+
+      /**
+       * Adds the quadrilateral with corner node ids @p corners to the
+       * surface @p name of @p mesh as the face of @p faces it is.
+       * @throws std::runtime_error naming @p where and @p name if it is no
+       * face of a hexahedron.
+       */
+      void
+      add_quadrilateral(ElementMesh        &mesh,
+                        const FaceIndex    &faces,
+                        const std::string  &name,
+                        std::array<long, 4> corners,
+                        const std::string  &where);
+
       /**
        * The triangulation of @p mesh in @p tria (coordinates times @p unit
        * [m per file unit]; quadratic elements curved as in

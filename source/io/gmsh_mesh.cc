@@ -10,7 +10,6 @@
 
 #include <gmsh.h>
 
-#include "abaqus_numbering.h"
 #include "element_mesh.h"
 
 #include <algorithm>
@@ -114,17 +113,7 @@ namespace squeal
         if (mesh.elements.empty())
           throw std::runtime_error(where + ": no hexahedron in the mesh");
 
-        // quadrilateral faces by their corner nodes
-        std::map<std::array<long, 4>, std::pair<long, unsigned int>> face_of;
-        for (const auto &e : mesh.elements)
-          for (unsigned int f = 0; f < 6; ++f)
-            {
-              std::array<long, 4> key;
-              for (unsigned int k = 0; k < 4; ++k)
-                key[k] = e.corners[abaqus_face[f][k]];
-              std::sort(key.begin(), key.end());
-              face_of.emplace(key, std::make_pair(e.id, f + 1));
-            }
+        const FaceIndex  faces = hexahedron_faces(mesh);
         gmsh::vectorpair groups;
         gmsh::model::getPhysicalGroups(groups);
         for (const auto &[dim, tag] : groups)
@@ -163,18 +152,14 @@ namespace squeal
                         std::to_string(type) +
                         "; faces of hexahedra are quadrilaterals");
                     for (std::size_t e = 0; e < elements[t].size(); ++e)
-                      {
-                        std::array<long, 4> key;
-                        for (unsigned int k = 0; k < 4; ++k)
-                          key[k] = nodes[t][per * e + k];
-                        std::sort(key.begin(), key.end());
-                        const auto it = face_of.find(key);
-                        if (it == face_of.end())
-                          throw std::runtime_error(
-                            where + ": a quadrilateral of surface group '" +
-                            name + "' is no face of a hexahedron");
-                        mesh.surfaces[name].push_back(it->second);
-                      }
+                      add_quadrilateral(mesh,
+                                        faces,
+                                        name,
+                                        {{long(nodes[t][per * e]),
+                                          long(nodes[t][per * e + 1]),
+                                          long(nodes[t][per * e + 2]),
+                                          long(nodes[t][per * e + 3])}},
+                                        where);
                   }
               }
           }

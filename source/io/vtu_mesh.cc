@@ -21,7 +21,6 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
-#include "abaqus_numbering.h"
 #include "element_mesh.h"
 
 #include <algorithm>
@@ -92,6 +91,7 @@ namespace squeal
               sets[set].push_back(ids[i]);
             }
         }
+
       } // namespace
 
       ElementMesh
@@ -189,30 +189,10 @@ namespace squeal
         for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
           collect_sets(pd->GetArray(a), node_ids, mesh.node_sets);
 
-        // each quadrilateral: the hexahedron face with its corner nodes
-        std::map<std::array<long, 4>, std::pair<long, unsigned int>> face_of;
-        for (const auto &e : mesh.elements)
-          for (unsigned int f = 0; f < 6; ++f)
-            {
-              std::array<long, 4> key;
-              for (unsigned int k = 0; k < 4; ++k)
-                key[k] = e.corners[abaqus_face[f][k]];
-              std::sort(key.begin(), key.end());
-              face_of.emplace(key, std::make_pair(e.id, f + 1));
-            }
+        const FaceIndex faces = hexahedron_faces(mesh);
         for (const auto &[name, members] : quad_sets)
           for (const long q : members)
-            {
-              std::array<long, 4> key = quads[q];
-              std::sort(key.begin(), key.end());
-              const auto it = face_of.find(key);
-              if (it == face_of.end())
-                throw std::runtime_error(
-                  where + ": a quadrilateral of face set '" + name +
-                  "' is no face of a hexahedron (its nodes must be the "
-                  "face's corner nodes)");
-              mesh.surfaces[name].push_back(it->second);
-            }
+            add_quadrilateral(mesh, faces, name, quads[q], where);
         return mesh;
       }
     } // namespace internal
