@@ -12,6 +12,7 @@
 #include <iomanip>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace test_tools
 {
@@ -65,6 +66,21 @@ namespace test_tools
         return e.what();
       }
     return "";
+  }
+
+  /** Checks that @p message (an error's) contains every one of @p parts:
+   *  prints "name: ok" or FAILED, and the message with SQUEAL_VERBOSE. */
+  inline void
+  check_message(const std::string              &name,
+                const std::string              &message,
+                const std::vector<std::string> &parts)
+  {
+    bool all = !message.empty();
+    for (const auto &part : parts)
+      all = all && message.find(part) != std::string::npos;
+    check(name, all ? 0. : 1., 0., 0., 1.);
+    if (!all)
+      verbose() << message << std::endl;
   }
 
   inline int

@@ -236,16 +236,10 @@ main(int argc, char **argv)
       Triangulation<3>  t;
       const std::string e =
         error_of([&]() { io::read_mesh_file(file, 1., t); });
-      check(file + ": one error naming the file and the problem",
-            e.find("'" + file + "'") != std::string::npos &&
-                e.find(expect) != std::string::npos ?
-              0. :
-              1.,
-            0.,
-            0.,
-            1.);
-      if (e.find(expect) == std::string::npos)
-        test_tools::verbose() << e << std::endl;
+      test_tools::check_message(file +
+                                  ": one error naming the file and the problem",
+                                e,
+                                {"'" + file + "'", expect});
     }
   return test_tools::finish();
 }
