@@ -6,6 +6,17 @@
 # waiting.
 # With EXISTING, the output directory EXISTING is created first with a marker
 # file, the run must refuse to replace it, and the marker must survive.
+# With SELF_INCLUDE, the input is a file at that path that includes itself;
+# with PIPE, a named pipe at that path (opening it would block).
+if(SELF_INCLUDE)
+  file(WRITE "${SELF_INCLUDE}" "include ${SELF_INCLUDE}\n")
+  set(INPUT "${SELF_INCLUDE}")
+endif()
+if(PIPE)
+  file(REMOVE "${PIPE}")
+  execute_process(COMMAND mkfifo "${PIPE}")
+  set(INPUT "${PIPE}")
+endif()
 if(EXISTING)
   file(REMOVE_RECURSE "${EXISTING}")
   file(WRITE "${EXISTING}/earlier_result.txt" "keep me\n")

@@ -12,6 +12,7 @@
 //    a.alpha changed changes C accordingly (closed forms, 1e-10);
 // 3. a point that moves a parameter the model was not built to vary, an
 //    unknown name, or two items giving one name gets one error naming it.
+// 4. A sliding direction whose norm overflows is still a unit vector.
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/numerics/vector_tools.h>
@@ -220,6 +221,17 @@ main(int argc, char **argv)
       "damping.alpha",
       e,
       {"two parameters are called 'damping.alpha'"});
+  }
+  {
+    // a direction whose norm overflows stays a unit vector (friction
+    // vanished with it before)
+    parameters::Interface i;
+    i.sliding_direction = "1e200, 0";
+    const auto t        = i.sliding_tangent();
+    check("Interface/Sliding direction = 1e200, 0 is the unit x axis",
+          t[0] + std::abs(t[1]) + std::abs(t[2]),
+          1.,
+          1e-15);
   }
   return test_tools::finish();
 }

@@ -488,11 +488,17 @@ namespace squeal
     void
     BrakingAnalysis::solve()
     {
-      const auto        &tr = prm.transient;
-      ExplicitDynamics  &d  = *dynamics;
-      const double       dt = result.time_step;
-      const unsigned int n_steps =
-        static_cast<unsigned int>(std::ceil(tr.end_time / dt - 1e-9)) + 1;
+      const auto       &tr    = prm.transient;
+      ExplicitDynamics &d     = *dynamics;
+      const double      dt    = result.time_step;
+      const double      steps = std::ceil(tr.end_time / dt - 1e-9) + 1;
+      if (!(steps < 2e9))
+        throw std::runtime_error(
+          "Transient/End time = " + as_text(tr.end_time) +
+          " s at a time step of " + as_text(dt) + " s is " + as_text(steps) +
+          " steps, more than a run can count (2e9); shorten the run or "
+          "coarsen the mesh");
+      const unsigned int n_steps = static_cast<unsigned int>(steps);
       const unsigned int every =
         std::max(1., std::round(1. / (tr.sampling_rate * dt)));
       history.sampling_rate = 1. / (every * dt);

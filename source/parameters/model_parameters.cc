@@ -58,6 +58,10 @@ namespace squeal
         m.poisson_ratio  = prm.get_double("Poisson's ratio");
         m.density        = prm.get_double("Density");
         prm.leave_subsection();
+        check(m.youngs_modulus > 0. && m.density > 0.,
+              "Materials/" + name + ": Young's modulus = " +
+                str(m.youngs_modulus) + " Pa and Density = " + str(m.density) +
+                " kg/m^3 must both be > 0");
       }
     } // namespace
 
@@ -190,8 +194,10 @@ namespace squeal
         {
           const auto v = Utilities::string_to_double(
             Utilities::split_string_list(sliding_direction, ','));
-          t[0] = v[0];
-          t[1] = v[1];
+          // scaled first: the norm of (1e200, 0) overflows
+          const double scale = std::max(std::abs(v[0]), std::abs(v[1]));
+          t[0]               = v[0] / scale;
+          t[1]               = v[1] / scale;
           t /= t.norm();
         }
       return t;
@@ -246,16 +252,16 @@ namespace squeal
         {
           const auto parts =
             Utilities::split_string_list(sliding_direction, ',');
-          bool   ok = parts.size() == 2;
-          double n2 = 0;
+          bool   ok      = parts.size() == 2;
+          double largest = 0;
           for (const auto &p : parts)
             {
               char        *end = nullptr;
               const double v   = std::strtod(p.c_str(), &end);
-              ok               = ok && end != p.c_str() && *end == '\0';
-              n2 += v * v;
+              ok = ok && end != p.c_str() && *end == '\0' && std::isfinite(v);
+              largest = std::max(largest, std::abs(v));
             }
-          check(ok && n2 > 0,
+          check(ok && largest > 0,
                 "Interface/Sliding direction must be `rotation` or two "
                 "numbers `tx, ty` not both zero, not '" +
                   sliding_direction + "'");

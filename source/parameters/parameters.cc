@@ -102,12 +102,68 @@ namespace squeal
               "by geometry with Mesh/Disc refinements under pad");
     }
 
+    namespace
+    {
+      // The INCLUDE chain of FILE (paths as deal.II opens them: from the
+      // working directory): one that comes back to a file on it would
+      // recurse without end in ParameterHandler.
+      void
+      check_includes(const std::string &file, std::vector<std::string> &chain)
+      {
+        chain.push_back(file);
+        std::ifstream in(file);
+        std::string   line;
+        for (unsigned int number = 1; std::getline(in, line); ++number)
+          {
+            std::istringstream words(line);
+            std::string        word;
+            if (!(words >> word) ||
+                (word != "include" && word != "INCLUDE" && word != "Include"))
+              continue;
+            std::string target;
+            std::getline(words >> std::ws, target);
+            while (!target.empty() &&
+                   std::isspace(static_cast<unsigned char>(target.back())))
+              target.pop_back();
+            const auto same = [&](const std::string &other) {
+              std::error_code ec;
+              return std::filesystem::equivalent(target, other, ec);
+            };
+            if (std::any_of(chain.begin(), chain.end(), same) ||
+                chain.size() > 32)
+              {
+                std::string path;
+                for (const auto &f : chain)
+                  path += "'" + f + "' -> ";
+                throw std::runtime_error(
+                  "in parameter file '" + file + "', line " +
+                  std::to_string(number) + ": INCLUDE '" + target +
+                  "' comes back to a file that includes it (" + path + "'" +
+                  target + "'); remove the cycle");
+              }
+            if (std::filesystem::is_regular_file(target))
+              check_includes(target, chain);
+          }
+        chain.pop_back();
+      }
+    } // namespace
+
     void
     parse_file(ParameterHandler &prm, const std::string &filename)
     {
+      // a pipe would block the open below: look first
+      if (std::filesystem::exists(filename) &&
+          !std::filesystem::is_regular_file(filename))
+        throw std::runtime_error("parameter file '" + filename +
+                                 "' is not a regular file (a directory, a "
+                                 "pipe or a device); give a .prm file");
       if (!std::ifstream(filename))
         throw std::runtime_error("cannot open parameter file '" + filename +
                                  "'");
+      {
+        std::vector<std::string> chain;
+        check_includes(filename, chain);
+      }
       try
         {
           prm.parse_input(filename, "", false, true);
