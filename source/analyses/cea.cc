@@ -453,6 +453,18 @@ namespace squeal
             << std::endl;
       setup_system();
       solve_sweep();
+      // an empty band is a wrong band, not a stable brake
+      if (std::all_of(points.begin(), points.end(), [](const Point &p) {
+            return p.lambda.empty();
+          }))
+        throw std::runtime_error(
+          "no eigenvalue in the band " +
+          Utilities::to_string(prm.eigensolver.f_min) + "-" +
+          Utilities::to_string(prm.eigensolver.f_max) + " Hz at any of the " +
+          std::to_string(points.size()) +
+          " sweep points: the model's modes lie outside it; check "
+          "Eigensolver/Minimum and Maximum frequency against the materials "
+          "and the mesh");
       check_against_full();
       classify();
       output_results();

@@ -197,6 +197,13 @@ namespace squeal
                 }
             }
         }
+      if (Utilities::MPI::max(columns.size(), comm) == 0)
+        throw std::runtime_error(
+          "reduced basis: no undamped mode in " + std::to_string(band.f_min) +
+          "-" + std::to_string(band_factor * band.f_max) +
+          " Hz at any basis sample: nothing to project on (check "
+          "Eigensolver/Minimum and Maximum frequency against the materials "
+          "and the mesh)");
       Eigen::MatrixXd B(owned.n_elements(), columns.size());
       for (unsigned int j = 0; j < columns.size(); ++j)
         B.col(j) = columns[j];

@@ -349,6 +349,9 @@ namespace squeal
       reduced_enrichment_depth = prm.get_integer("Reduced enrichment depth");
       n_check_points           = prm.get_integer("Check points");
       prm.leave_subsection();
+      check(target_frequency > 0.,
+            "Eigensolver/Target frequency = " + str(target_frequency) +
+              " Hz: the shift must be > 0 Hz");
       check(f_min < f_max,
             "Eigensolver/Minimum frequency (" + str(f_min) +
               " Hz) must be below Eigensolver/Maximum frequency (" +
