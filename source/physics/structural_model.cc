@@ -316,6 +316,121 @@ namespace squeal
       return result;
     }
 
+    namespace
+    {
+      // The model's constraints: hanging nodes, the scene's holds and ties.
+      // With ties every rank holds every constraint (a slave node's master
+      // nodes need not be among its relevant DoFs; the mesh is whole on
+      // every rank).
+      void
+      make_constraints(StructuralModel &model)
+      {
+        const scene::Scene &scene       = *model.scene;
+        auto               &constraints = model.constraints;
+        const bool          tied        = !scene.ties.empty();
+        if (tied && !model.tie_constraints)
+          throw std::runtime_error(
+            "scene " + scene.description() +
+            " has ties, and this analysis builds its model without them");
+        constraints.clear();
+        constraints.reinit(tied ?
+                             complete_index_set(model.dof_handler.n_dofs()) :
+                             model.locally_relevant_dofs);
+        DoFTools::make_hanging_node_constraints(model.dof_handler, constraints);
+        for (const scene::Hold &hold : scene.holds)
+          VectorTools::interpolate_boundary_values(
+            model.mapping,
+            model.dof_handler,
+            hold.id,
+            Functions::ZeroFunction<3>(3),
+            constraints,
+            ComponentMask(std::vector<bool>(hold.components.begin(),
+                                            hold.components.end())));
+        if (tied)
+          model.tie_constraints(model, constraints);
+        constraints.close();
+      }
+
+      // The linear interface's quadrature points, one list per contact
+      // pair, weighted by the model's interface mask (a preload's contact
+      // state) where there is one.
+      std::vector<std::vector<CouplingPoint>>
+      interface_points(const StructuralModel &model, ConditionalOStream &pcout)
+      {
+        const auto                             &prm = model.prm;
+        std::vector<std::vector<CouplingPoint>> pair_points;
+        for (const scene::ContactPair &pair : model.scene->contact_pairs)
+          pair_points.push_back(
+            interface_quadrature(model.dof_handler,
+                                 model.mapping,
+                                 pair,
+                                 prm.interface.quadrature,
+                                 prm.interface.quadrature == "nodal" ?
+                                   prm.mesh.fe_degree + 1 :
+                                   prm.mesh.fe_degree + 2));
+        if (!model.interface_mask)
+          return pair_points;
+        for (auto &points : pair_points)
+          {
+            std::vector<CouplingPoint> kept;
+            for (CouplingPoint p : points)
+              {
+                p.weight *= model.interface_mask(
+                  model.mapping.transform_unit_to_real_cell(p.pad_cell,
+                                                            p.pad_unit));
+                if (p.weight != 0.)
+                  kept.push_back(p);
+              }
+            pcout << "Interface: " << kept.size() << " of " << points.size()
+                  << " quadrature points in contact after the preload"
+                  << std::endl;
+            points.swap(kept);
+          }
+        return pair_points;
+      }
+
+      // Constrained rows: K_ii = d, M_ii = d / omega_s^2, all parts else 0;
+      // d the mean diagonal over the free rows of the common stiffness part
+      // (the bodies no point changes), or of every body's at its nominal
+      // values if all vary: it depends on no point. Returns d [N/m].
+      double
+      set_constrained_rows(StructuralModel   &model,
+                           const MatrixParts &parts,
+                           const unsigned int fixed_mass,
+                           const unsigned int fixed_stiffness)
+      {
+        const auto &constraints        = model.constraints;
+        const auto  mean_free_diagonal = [&](const bool common_only) {
+          double trace = 0, n_free = 0;
+          for (const auto i : model.locally_owned_dofs)
+            if (!constraints.is_constrained(i))
+              {
+                for (unsigned int k = 0; k < parts.size(); ++k)
+                  if ((k == fixed_stiffness || !common_only) &&
+                      parts.parts[k].kind == MatrixParts::Kind::stiffness &&
+                      !parts.parts[k].springs)
+                    trace += parts.matrix(k).diag_element(i);
+                n_free += 1;
+              }
+          return Utilities::MPI::sum(trace, model.comm) /
+                 std::max(1., Utilities::MPI::sum(n_free, model.comm));
+        };
+        double d = mean_free_diagonal(true);
+        if (!(d > 0.))
+          d = mean_free_diagonal(false);
+        const double omega_s =
+          2. * numbers::PI * 1e3 * model.prm.eigensolver.f_max;
+        for (unsigned int k = 0; k < parts.size(); ++k)
+          set_constrained_diagonal(constraints,
+                                   model.locally_owned_dofs,
+                                   k == fixed_stiffness ? d :
+                                   k == fixed_mass ? d / (omega_s * omega_s) :
+                                                     0.,
+                                   *model.part_matrices[k]);
+        return d;
+      }
+    } // namespace
+
     void
     StructuralModel::setup_dofs_and_assemble(ConditionalOStream &pcout)
     {
@@ -324,60 +439,8 @@ namespace squeal
       DoFTools::extract_locally_relevant_dofs(dof_handler,
                                               locally_relevant_dofs);
 
-      // With ties, every rank holds every constraint (a slave node's master
-      // nodes need not be among its relevant DoFs; the mesh is whole on
-      // every rank).
-      const bool tied = !scene->ties.empty();
-      if (tied && !tie_constraints)
-        throw std::runtime_error(
-          "scene " + scene->description() +
-          " has ties, and this analysis builds its model without them");
-      constraints.clear();
-      constraints.reinit(tied ? complete_index_set(dof_handler.n_dofs()) :
-                                locally_relevant_dofs);
-      DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-      for (const scene::Hold &hold : scene->holds)
-        VectorTools::interpolate_boundary_values(
-          mapping,
-          dof_handler,
-          hold.id,
-          Functions::ZeroFunction<3>(3),
-          constraints,
-          ComponentMask(
-            std::vector<bool>(hold.components.begin(), hold.components.end())));
-      if (tied)
-        tie_constraints(*this, constraints);
-      constraints.close();
-
-      // one list per contact pair
-      std::vector<std::vector<CouplingPoint>> pair_points;
-      for (const scene::ContactPair &pair : scene->contact_pairs)
-        pair_points.push_back(
-          interface_quadrature(dof_handler,
-                               mapping,
-                               pair,
-                               prm.interface.quadrature,
-                               prm.interface.quadrature == "nodal" ?
-                                 prm.mesh.fe_degree + 1 :
-                                 prm.mesh.fe_degree + 2));
-      for (auto &interface_points : pair_points)
-        if (interface_mask)
-          {
-            std::vector<CouplingPoint> kept;
-            for (CouplingPoint p : interface_points)
-              {
-                p.weight *= interface_mask(
-                  mapping.transform_unit_to_real_cell(p.pad_cell, p.pad_unit));
-                if (p.weight != 0.)
-                  kept.push_back(p);
-              }
-            pcout << "Interface: " << kept.size() << " of "
-                  << interface_points.size()
-                  << " quadrature points in contact after the preload"
-                  << std::endl;
-            interface_points.swap(kept);
-          }
-
+      make_constraints(*this);
+      const auto pair_points = interface_points(*this, pcout);
       pattern = std::make_unique<DynamicSparsityPattern>(locally_relevant_dofs);
       DoFTools::make_sparsity_pattern(dof_handler,
                                       *pattern,
@@ -460,37 +523,8 @@ namespace squeal
       part_matrices.resize(next_part);
       pattern.reset();
 
-      // Constrained rows: K_ii = d, M_ii = d / omega_s^2, all parts else 0;
-      // d the mean diagonal over the free rows of the common stiffness part
-      // (the bodies no point changes), or of every body's at its nominal
-      // values if all vary: it depends on no point.
-      const auto mean_free_diagonal = [&](const bool common_only) {
-        double trace = 0, n_free = 0;
-        for (const auto i : locally_owned_dofs)
-          if (!constraints.is_constrained(i))
-            {
-              for (unsigned int k = 0; k < parts.size(); ++k)
-                if ((k == fixed_stiffness || !common_only) &&
-                    parts.parts[k].kind == MatrixParts::Kind::stiffness &&
-                    !parts.parts[k].springs)
-                  trace += parts.matrix(k).diag_element(i);
-              n_free += 1;
-            }
-        return Utilities::MPI::sum(trace, comm) /
-               std::max(1., Utilities::MPI::sum(n_free, comm));
-      };
-      constrained_diagonal = mean_free_diagonal(true);
-      if (!(constrained_diagonal > 0.))
-        constrained_diagonal = mean_free_diagonal(false);
-      const double omega_s = 2. * numbers::PI * 1e3 * prm.eigensolver.f_max;
-      for (unsigned int k = 0; k < parts.size(); ++k)
-        set_constrained_diagonal(constraints,
-                                 locally_owned_dofs,
-                                 k == fixed_stiffness ? constrained_diagonal :
-                                 k == fixed_mass      ? constrained_diagonal /
-                                                     (omega_s * omega_s) :
-                                                   0.,
-                                 *part_matrices[k]);
+      constrained_diagonal =
+        set_constrained_rows(*this, parts, fixed_mass, fixed_stiffness);
       assembled = parts;
     }
 

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -292,6 +293,170 @@ namespace squeal
                 ") m lies on no boundary face of body '" + body_name + "'");
           }
       }
+      using FaceId =
+        std::function<types::boundary_id(const Item &, const std::string &)>;
+
+      // The Loads list: a traction on a face set along a direction, of the
+      // analysis' force, its own force or a pressure, with its own ramp.
+      std::vector<Load>
+      read_loads(const std::string &list, const FaceId &face_id)
+      {
+        std::vector<Load> loads;
+        for (const Item &item :
+             parse_list("Loads",
+                        list,
+                        {"set", "direction", "force", "pressure", "ramp"}))
+          {
+            Load load{item.name,
+                      face_id(item, item.text("set")),
+                      item.unit("direction", "")};
+            if (item.has("force") && item.has("pressure"))
+              throw std::runtime_error(item.where() +
+                                       ": give force= or pressure=, not both");
+            if (item.has("force") || item.has("pressure"))
+              {
+                load.magnitude = item.has("force") ? Load::Magnitude::force :
+                                                     Load::Magnitude::pressure;
+                load.value =
+                  item.number(item.has("force") ? "force" : "pressure");
+                if (!(load.value >= 0.) || !std::isfinite(load.value))
+                  throw std::runtime_error(
+                    item.where() + ": force [N] and pressure [Pa] must be >= 0 "
+                                   "(the direction gives the sense)");
+              }
+            if (item.has("ramp"))
+              {
+                load.ramp = item.number("ramp");
+                if (!(load.ramp >= 0.) || !std::isfinite(load.ramp))
+                  throw std::runtime_error(item.where() +
+                                           ": ramp must be >= 0 [s]");
+              }
+            loads.push_back(load);
+          }
+        return loads;
+      }
+
+      // The Masses list: at a point or spread over a face set.
+      std::vector<LumpedMass>
+      read_masses(const std::string &list, const FaceId &face_id)
+      {
+        std::vector<LumpedMass> masses;
+        for (const Item &item :
+             parse_list("Masses", list, {"mass", "point", "set"}))
+          {
+            LumpedMass m;
+            m.name = item.name;
+            m.mass = item.number("mass");
+            if (!(m.mass > 0.))
+              throw std::runtime_error(item.where() + ": need mass > 0 [kg]");
+            if (item.has("point") == item.has("set"))
+              throw std::runtime_error(item.where() +
+                                       ": give either point= or set=");
+            m.on_faces = item.has("set");
+            if (m.on_faces)
+              m.faces = face_id(item, item.text("set"));
+            else
+              m.point = Point<3>(item.vector("point"));
+            masses.push_back(m);
+          }
+
+        return masses;
+      }
+
+      // The Ties list: bonded slave and master face sets.
+      std::vector<Tie>
+      read_ties(const std::string &list, const FaceId &face_id)
+      {
+        std::vector<Tie> ties;
+        for (const Item &item : parse_list("Ties", list, {"slave", "master"}))
+          {
+            Tie tie{item.name,
+                    face_id(item, item.text("slave")),
+                    face_id(item, item.text("master"))};
+            if (tie.slave == tie.master)
+              throw std::runtime_error(item.where() +
+                                       ": slave and master are one face set");
+            ties.push_back(tie);
+          }
+        return ties;
+      }
+
+      // The Springs list: stations on a body's boundary faces (to ground)
+      // or joining two bodies.
+      std::vector<SpringSet>
+      read_springs(const parameters::AllParameters                    &prm,
+                   const io::NamedSets                                &sets,
+                   const std::vector<Triangulation<3>::cell_iterator> &cells,
+                   const std::vector<std::string> &body_sets,
+                   const std::vector<Body>        &bodies)
+      {
+        const auto            &mf = prm.scene.mesh_file;
+        std::vector<SpringSet> springs;
+        // Springs: each station on a boundary face of its body.
+        for (const Item &item : parse_list(
+               "Springs",
+               mf.springs,
+               {"body", "direction", "points", "nodes", "radius", "k", "to"}))
+          {
+            SpringSet s;
+            s.name                      = item.name;
+            const std::string body_name = item.text("body");
+            const auto        it =
+              std::find_if(bodies.begin(), bodies.end(), [&](const Body &b) {
+                return b.name == body_name;
+              });
+            if (it == bodies.end())
+              throw std::runtime_error(item.where() + ": no body '" +
+                                       body_name + "' in " + prefix + "Bodies");
+            s.body = it->id;
+            if (item.has("to"))
+              {
+                const std::string other = item.text("to");
+                const auto        jt =
+                  std::find_if(bodies.begin(),
+                               bodies.end(),
+                               [&](const Body &b) { return b.name == other; });
+                if (jt == bodies.end() || jt == it)
+                  throw std::runtime_error(item.where() + ": to = '" + other +
+                                           "' must name another body of " +
+                                           prefix + "Bodies");
+                if (item.has("radius"))
+                  throw std::runtime_error(
+                    item.where() +
+                    ": springs between two bodies join the nodes "
+                    "nearest each station; remove radius=");
+                s.to_body = true;
+                s.other   = jt->id;
+              }
+            s.direction = item.unit("direction", "");
+            s.stiffness = item.number("k", prm.springs.stiffness);
+            if (!(s.stiffness >= 0.))
+              throw std::runtime_error(item.where() + ": k must be >= 0 [N/m]");
+            s.radius = s.to_body ?
+                         0. :
+                         item.number("radius", prm.springs.attachment_radius);
+            if (!(s.radius >= 0.))
+              throw std::runtime_error(item.where() + ": radius must be >= 0");
+            if (item.has("points") == item.has("nodes"))
+              throw std::runtime_error(item.where() +
+                                       ": give either points= or nodes=");
+            if (item.has("points"))
+              for (const std::string &p :
+                   Utilities::split_string_list(item.text("points"), '|'))
+                s.stations.emplace_back(item.vector(p, "points"));
+            else
+              s.stations = named(
+                item, [&]() -> const auto & {
+                  return sets.nodes(item.text("nodes"));
+                });
+            if (!s.to_body) // two bodies' springs sit at nodes, not on faces
+              place_stations(
+                item, body_name, sets.cells(body_sets[s.body]), cells, s);
+            springs.push_back(s);
+          }
+
+        return springs;
+      }
     } // namespace
 
     MeshFileScene::MeshFileScene(const parameters::AllParameters &prm)
@@ -402,16 +567,7 @@ namespace squeal
           set_sliding(item, disc, sense, pair);
           contact_pairs.push_back(pair);
         }
-      for (const Item &item : parse_list("Ties", mf.ties, {"slave", "master"}))
-        {
-          Tie tie{item.name,
-                  face_id(item, item.text("slave")),
-                  face_id(item, item.text("master"))};
-          if (tie.slave == tie.master)
-            throw std::runtime_error(item.where() +
-                                     ": slave and master are one face set");
-          ties.push_back(tie);
-        }
+      ties = read_ties(mf.ties, face_id);
       // a disc's theta = 0: towards the first pair
       for (Body &b : bodies)
         if (b.disc)
@@ -447,120 +603,11 @@ namespace squeal
              Point<3>(item.vector("point")),
              component_of(item, "component", c.size() == 1 ? c[0] : '?')});
         }
-      for (const Item &item :
-           parse_list("Loads",
-                      mf.loads,
-                      {"set", "direction", "force", "pressure", "ramp"}))
-        {
-          Load load{item.name,
-                    face_id(item, item.text("set")),
-                    item.unit("direction", "")};
-          if (item.has("force") && item.has("pressure"))
-            throw std::runtime_error(item.where() +
-                                     ": give force= or pressure=, not both");
-          if (item.has("force") || item.has("pressure"))
-            {
-              load.magnitude = item.has("force") ? Load::Magnitude::force :
-                                                   Load::Magnitude::pressure;
-              load.value =
-                item.number(item.has("force") ? "force" : "pressure");
-              if (!(load.value >= 0.) || !std::isfinite(load.value))
-                throw std::runtime_error(
-                  item.where() + ": force [N] and pressure [Pa] must be >= 0 "
-                                 "(the direction gives the sense)");
-            }
-          if (item.has("ramp"))
-            {
-              load.ramp = item.number("ramp");
-              if (!(load.ramp >= 0.) || !std::isfinite(load.ramp))
-                throw std::runtime_error(item.where() +
-                                         ": ramp must be >= 0 [s]");
-            }
-          loads.push_back(load);
-        }
+      loads = read_loads(mf.loads, face_id);
       for (const Item &item : parse_list("Probes", mf.probes, {"point"}))
         probes.push_back({item.name, Point<3>(item.vector("point"))});
-      for (const Item &item :
-           parse_list("Masses", mf.masses, {"mass", "point", "set"}))
-        {
-          LumpedMass m;
-          m.name = item.name;
-          m.mass = item.number("mass");
-          if (!(m.mass > 0.))
-            throw std::runtime_error(item.where() + ": need mass > 0 [kg]");
-          if (item.has("point") == item.has("set"))
-            throw std::runtime_error(item.where() +
-                                     ": give either point= or set=");
-          m.on_faces = item.has("set");
-          if (m.on_faces)
-            m.faces = face_id(item, item.text("set"));
-          else
-            m.point = Point<3>(item.vector("point"));
-          masses.push_back(m);
-        }
-
-      // Springs: each station on a boundary face of its body.
-      for (const Item &item : parse_list(
-             "Springs",
-             mf.springs,
-             {"body", "direction", "points", "nodes", "radius", "k", "to"}))
-        {
-          SpringSet s;
-          s.name                      = item.name;
-          const std::string body_name = item.text("body");
-          const auto        it =
-            std::find_if(bodies.begin(), bodies.end(), [&](const Body &b) {
-              return b.name == body_name;
-            });
-          if (it == bodies.end())
-            throw std::runtime_error(item.where() + ": no body '" + body_name +
-                                     "' in " + prefix + "Bodies");
-          s.body = it->id;
-          if (item.has("to"))
-            {
-              const std::string other = item.text("to");
-              const auto        jt =
-                std::find_if(bodies.begin(), bodies.end(), [&](const Body &b) {
-                  return b.name == other;
-                });
-              if (jt == bodies.end() || jt == it)
-                throw std::runtime_error(item.where() + ": to = '" + other +
-                                         "' must name another body of " +
-                                         prefix + "Bodies");
-              if (item.has("radius"))
-                throw std::runtime_error(
-                  item.where() + ": springs between two bodies join the nodes "
-                                 "nearest each station; remove radius=");
-              s.to_body = true;
-              s.other   = jt->id;
-            }
-          s.direction = item.unit("direction", "");
-          s.stiffness = item.number("k", prm.springs.stiffness);
-          if (!(s.stiffness >= 0.))
-            throw std::runtime_error(item.where() + ": k must be >= 0 [N/m]");
-          s.radius = s.to_body ?
-                       0. :
-                       item.number("radius", prm.springs.attachment_radius);
-          if (!(s.radius >= 0.))
-            throw std::runtime_error(item.where() + ": radius must be >= 0");
-          if (item.has("points") == item.has("nodes"))
-            throw std::runtime_error(item.where() +
-                                     ": give either points= or nodes=");
-          if (item.has("points"))
-            for (const std::string &p :
-                 Utilities::split_string_list(item.text("points"), '|'))
-              s.stations.emplace_back(item.vector(p, "points"));
-          else
-            s.stations = named(
-              item, [&]() -> const auto & {
-                return sets.nodes(item.text("nodes"));
-              });
-          if (!s.to_body) // two bodies' springs sit at nodes, not on faces
-            place_stations(
-              item, body_name, sets.cells(body_sets[s.body]), cells, s);
-          springs.push_back(s);
-        }
-
+      masses  = read_masses(mf.masses, face_id);
+      springs = read_springs(prm, sets, cells, body_sets, bodies);
       check_grounded(*this, face_ids, sets, cells, owner, description());
     }
 
