@@ -27,6 +27,49 @@ namespace squeal
     namespace fs = std::filesystem;
     using internal::nan;
 
+    namespace
+    {
+      // The maps @p named, all on the grid of @p g, as cell data of a
+      // deal.II mesh of that grid in the .vtu @p file (NaN where a map has
+      // no value).
+      void
+      write_face_maps(
+        const fs::path                                             &file,
+        const GridMap                                              &g,
+        const std::vector<std::pair<const GridMap *, std::string>> &named)
+      {
+        dealii::Triangulation<2> tria;
+        dealii::GridGenerator::subdivided_hyper_rectangle(
+          tria,
+          {g.nx, g.ny},
+          dealii::Point<2>(g.x0, g.y0),
+          dealii::Point<2>(g.x0 + g.nx * g.h, g.y0 + g.ny * g.h));
+        dealii::DataOut<2> data_out;
+        data_out.attach_triangulation(tria);
+        std::vector<dealii::Vector<double>> fields;
+        fields.reserve(named.size());
+        for (const auto &[m, name] : named)
+          {
+            fields.emplace_back(tria.n_active_cells());
+            for (const auto &cell : tria.active_cell_iterators())
+              {
+                const auto c = cell->center();
+                const long k = g.cell_of(c[0], c[1]);
+                fields.back()[cell->active_cell_index()] =
+                  (k >= 0 && !m->values.empty()) ? m->values[k] : nan;
+              }
+            data_out.add_data_vector(fields.back(),
+                                     name,
+                                     dealii::DataOut<2>::type_cell_data);
+          }
+        data_out.build_patches();
+        std::ofstream vtu(file);
+        data_out.write_vtu(vtu);
+        if (!vtu)
+          throw std::runtime_error("cannot write " + file.string());
+      }
+    } // namespace
+
     void
     TribologyAnalysis::output_results()
     {
@@ -163,42 +206,14 @@ namespace squeal
         }
 
       // ParaView: the maps as cell data on the pad-face grid.
-      {
-        dealii::Triangulation<2> tria;
-        dealii::GridGenerator::subdivided_hyper_rectangle(
-          tria,
-          {g.nx, g.ny},
-          dealii::Point<2>(g.x0, g.y0),
-          dealii::Point<2>(g.x0 + g.nx * g.h, g.y0 + g.ny * g.h));
-        dealii::DataOut<2> data_out;
-        data_out.attach_triangulation(tria);
-        std::vector<dealii::Vector<double>>                        fields;
-        const std::vector<std::pair<const GridMap *, std::string>> named = {
-          {&log_damage, "log10_damage_Findley"},
-          {&p_oscillation, "pressure_range_relative"},
-          {&separated, "separated_fraction"},
-          {&crack_density, "crack_length_per_area_mm_per_mm2"},
-          {&crack_count, "cracks_per_mm2"},
-          {&exfoliated, "exfoliated_fraction"}};
-        fields.reserve(named.size());
-        for (const auto &[m, name] : named)
-          {
-            fields.emplace_back(tria.n_active_cells());
-            for (const auto &cell : tria.active_cell_iterators())
-              {
-                const auto c = cell->center();
-                const long k = g.cell_of(c[0], c[1]);
-                fields.back()[cell->active_cell_index()] =
-                  (k >= 0 && !m->values.empty()) ? m->values[k] : nan;
-              }
-            data_out.add_data_vector(fields.back(),
-                                     name,
-                                     dealii::DataOut<2>::type_cell_data);
-          }
-        data_out.build_patches();
-        std::ofstream vtu(dir / "pad_face_maps.vtu");
-        data_out.write_vtu(vtu);
-      }
+      write_face_maps(dir / "pad_face_maps.vtu",
+                      g,
+                      {{&log_damage, "log10_damage_Findley"},
+                       {&p_oscillation, "pressure_range_relative"},
+                       {&separated, "separated_fraction"},
+                       {&crack_density, "crack_length_per_area_mm_per_mm2"},
+                       {&crack_count, "cracks_per_mm2"},
+                       {&exfoliated, "exfoliated_fraction"}});
 
       io::publish_directory(work_dir, prm.output.directory);
       std::cout << "Results in " << prm.output.directory << std::endl;

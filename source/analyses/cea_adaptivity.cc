@@ -524,8 +524,71 @@ namespace squeal
                    "it); the sweep runs on the last mesh, "
                 << n_dofs << " DoFs" << std::endl;
       }
-    } // namespace
+      // the columns of adaptive_cycles.csv and adaptive_modes.csv
+      constexpr const char *cycles_header =
+        "cycle,cells,dofs,seconds,modes,max_relative_change,"
+        "median_relative_change,frequency_of_max_change_Hz,"
+        "modes_unmatched,estimate_dofs,estimate_seconds,"
+        "max_estimated_error,frequency_of_max_estimate_Hz,"
+        "modes_above_tolerance,degree\n";
+      constexpr const char *modes_header =
+        "cycle,freq_Hz,re_per_s,estimated_relative_error,"
+        "estimate_partner_freq_Hz,estimate_partner_re_per_s,"
+        "check_freq_Hz,check_re_per_s,check_relative_error\n";
 
+      // One adaptive cycle's mesh and its change from the previous one: a
+      // log line and the first columns of its row of adaptive_cycles.csv.
+      void
+      report_cycle(ConditionalOStream             &pcout,
+                   std::ostream                   &table,
+                   const unsigned int              cycle,
+                   const physics::StructuralModel &model,
+                   const double                    seconds,
+                   const std::size_t               n_modes,
+                   const MeshChange               &change)
+      {
+        pcout << "Adaptive cycle " << cycle << ": "
+              << model.triangulation.n_active_cells() << " cells, "
+              << model.n_dofs() << " DoFs, " << n_modes
+              << " modes in the band, full solve " << std::setprecision(3)
+              << seconds << " s";
+        if (change.e_max >= 0.)
+          pcout << ", change from the previous mesh: largest "
+                << 100. * change.e_max << " % (" << change.f_worst
+                << " Hz), median " << 100. * change.e_median << " %"
+                << (change.n_unmatched > 0 ?
+                      ", " + std::to_string(change.n_unmatched) +
+                        " modes without a partner" :
+                      std::string());
+        pcout << std::setprecision(6) << std::endl;
+        table << cycle << ',' << model.triangulation.n_active_cells() << ','
+              << model.n_dofs() << ',' << seconds << ',' << n_modes << ','
+              << change.e_max << ',' << change.e_median << ',' << change.f_worst
+              << ',' << change.n_unmatched;
+      }
+
+      // The cycle's error estimate at degree @p degree: a log line and the
+      // estimate's columns of adaptive_cycles.csv.
+      void
+      report_estimate(ConditionalOStream  &pcout,
+                      std::ostream        &table,
+                      const CycleEstimate &ce,
+                      const unsigned int   degree,
+                      const double         tolerance)
+      {
+        pcout << "  estimated error (degree " << degree << ", " << ce.rich_dofs
+              << " DoFs, " << std::setprecision(3) << ce.seconds
+              << " s): largest " << 100. * ce.worst << " % (" << ce.f_at
+              << " Hz), " << ce.n_above << " modes above the tolerance "
+              << 100. * tolerance << " %";
+        if (ce.n_shared > 0)
+          pcout << " (" << ce.n_shared
+                << " modes take a closer neighbour's larger estimate)";
+        pcout << std::setprecision(6) << std::endl;
+        table << ',' << ce.rich_dofs << ',' << ce.seconds << ',' << ce.worst
+              << ',' << ce.f_at << ',' << ce.n_above;
+      }
+    } // namespace
     // h or p (Mesh/Degree adaptivity): the largest estimate's decay per DoF,
     // rho = log(e_before / e_after) / log(N_after / N_before), measured on
     // the last h step, against the one degree + 1 on the same mesh is
@@ -639,14 +702,8 @@ namespace squeal
       std::vector<dealii::Point<3>>                  prev_points;
       std::vector<unsigned int>                      prev_component;
       std::ostringstream                             table, per_mode;
-      table << "cycle,cells,dofs,seconds,modes,max_relative_change,"
-               "median_relative_change,frequency_of_max_change_Hz,"
-               "modes_unmatched,estimate_dofs,estimate_seconds,"
-               "max_estimated_error,frequency_of_max_estimate_Hz,"
-               "modes_above_tolerance,degree\n";
-      per_mode << "cycle,freq_Hz,re_per_s,estimated_relative_error,"
-                  "estimate_partner_freq_Hz,estimate_partner_re_per_s,"
-                  "check_freq_Hz,check_re_per_s,check_relative_error\n";
+      table << cycles_header;
+      per_mode << modes_header;
       ConditionalOStream quiet(std::cout, false);
       // the last h-refinement step: DoFs before and after, the largest
       // estimate before
@@ -681,10 +738,10 @@ namespace squeal
           shapes = full_shapes(*model, pairs);
           // this mesh's support points: the new side of the comparison now,
           // the old side after the refinement
-          auto [points, component]  = physics::dof_support_points(*model);
-          const MeshChange   change = f_prev.empty() ?
-                                        MeshChange() :
-                                        change_from_previous(f,
+          auto [points, component] = physics::dof_support_points(*model);
+          const MeshChange change  = f_prev.empty() ?
+                                       MeshChange() :
+                                       change_from_previous(f,
                                                            shapes,
                                                            points,
                                                            component,
@@ -693,26 +750,7 @@ namespace squeal
                                                            prev_points,
                                                            prev_component,
                                                            in_band);
-          const double       e_max = change.e_max, e_median = change.e_median;
-          const double       f_worst     = change.f_worst;
-          const unsigned int n_unmatched = change.n_unmatched;
-          pcout << "Adaptive cycle " << cycle << ": "
-                << model->triangulation.n_active_cells() << " cells, "
-                << model->n_dofs() << " DoFs, " << f.size()
-                << " modes in the band, full solve " << std::setprecision(3)
-                << seconds << " s";
-          if (e_max >= 0.)
-            pcout << ", change from the previous mesh: largest " << 100. * e_max
-                  << " % (" << f_worst << " Hz), median " << 100. * e_median
-                  << " %"
-                  << (n_unmatched > 0 ? ", " + std::to_string(n_unmatched) +
-                                          " modes without a partner" :
-                                        std::string());
-          pcout << std::setprecision(6) << std::endl;
-          table << cycle << ',' << model->triangulation.n_active_cells() << ','
-                << model->n_dofs() << ',' << seconds << ',' << f.size() << ','
-                << e_max << ',' << e_median << ',' << f_worst << ','
-                << n_unmatched;
+          report_cycle(pcout, table, cycle, *model, seconds, f.size(), change);
 
           // the error estimate: the same mesh at degree + 1
           std::vector<bool>       above(pairs.size(), false);
@@ -726,18 +764,8 @@ namespace squeal
               above     = ce.above;
               rich_dofs = ce.rich_dofs;
               worst     = ce.worst;
-              pcout << "  estimated error (degree " << model->fe.degree + 1
-                    << ", " << rich_dofs << " DoFs, " << std::setprecision(3)
-                    << ce.seconds << " s): largest " << 100. * worst << " % ("
-                    << ce.f_at << " Hz), " << ce.n_above
-                    << " modes above the tolerance "
-                    << 100. * m.frequency_tolerance << " %";
-              if (ce.n_shared > 0)
-                pcout << " (" << ce.n_shared
-                      << " modes take a closer neighbour's larger estimate)";
-              pcout << std::setprecision(6) << std::endl;
-              table << ',' << rich_dofs << ',' << ce.seconds << ',' << worst
-                    << ',' << ce.f_at << ',' << ce.n_above;
+              report_estimate(
+                pcout, table, ce, model->fe.degree + 1, m.frequency_tolerance);
               reached = ce.n_above == 0;
             }
           else

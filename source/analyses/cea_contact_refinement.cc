@@ -31,6 +31,83 @@ namespace squeal
 
     namespace
     {
+      // The preload's nodal contact pressure on a tensor grid of the pad
+      // face's plane coordinates (the preload runs on the unrefined mesh),
+      // bilinear between the nodes.
+      struct NodalPressure
+      {
+        static constexpr double eps = 1e-9; ///< m, coordinate tolerance
+
+        /// @throws std::runtime_error if @p nodes do not form a tensor grid
+        explicit NodalPressure(
+          const std::vector<std::pair<Point<2>, double>> &nodes)
+          : xs(unique_sorted(nodes, 0))
+          , ys(unique_sorted(nodes, 1))
+          , grid(xs.size() * ys.size(), 0.)
+        {
+          std::vector<bool> seen(grid.size(), false);
+          for (const auto &[x, p] : nodes)
+            if (xs.size() > 1 && ys.size() > 1)
+              {
+                const unsigned int i = locate(xs, x[0] + eps).first +
+                                       (x[0] > xs.back() - eps ? 1 : 0),
+                                   j = locate(ys, x[1] + eps).first +
+                                       (x[1] > ys.back() - eps ? 1 : 0);
+                grid[i * ys.size() + j] = p;
+                seen[i * ys.size() + j] = true;
+              }
+          if (xs.size() < 2 || ys.size() < 2 ||
+              std::count(seen.begin(), seen.end(), false) > 0)
+            throw std::runtime_error(
+              "Mesh/Contact refinements: the preload's pad nodes do not form "
+              "a tensor grid over the pad face (" +
+              std::to_string(nodes.size()) + " nodes, " +
+              std::to_string(xs.size()) + " x " + std::to_string(ys.size()) +
+              " coordinates)");
+        }
+
+        /// the bilinear pressure [Pa] at @p x (clamped to the grid)
+        double
+        operator()(const Point<2> &x) const
+        {
+          const auto [i, t] = locate(xs, x[0]);
+          const auto [j, u] = locate(ys, x[1]);
+          const auto g      = [&](unsigned int a, unsigned int b) {
+            return grid[a * ys.size() + b];
+          };
+          return (1 - t) * (1 - u) * g(i, j) + t * (1 - u) * g(i + 1, j) +
+                 (1 - t) * u * g(i, j + 1) + t * u * g(i + 1, j + 1);
+        }
+
+        std::vector<double> xs, ys; ///< the grid's coordinates [m]
+        std::vector<double> grid;   ///< pressure [Pa] at (xs[i], ys[j])
+
+      private:
+        static std::vector<double>
+        unique_sorted(const std::vector<std::pair<Point<2>, double>> &nodes,
+                      const unsigned int                              d)
+        {
+          std::vector<double> v;
+          for (const auto &[x, p] : nodes)
+            v.push_back(x[d]);
+          std::sort(v.begin(), v.end());
+          v.erase(std::unique(v.begin(),
+                              v.end(),
+                              [](double a, double b) { return b - a < eps; }),
+                  v.end());
+          return v;
+        }
+
+        // the cell of @p g holding @p x and the local coordinate in it
+        static std::pair<unsigned int, double>
+        locate(const std::vector<double> &g, const double x)
+        {
+          unsigned int i = std::upper_bound(g.begin(), g.end(), x) - g.begin();
+          i = std::min<unsigned int>(std::max(i, 1u), g.size() - 1) - 1;
+          return {i, std::clamp((x - g[i]) / (g[i + 1] - g[i]), 0., 1.)};
+        }
+      };
+
       // One contact refinement cycle (Mesh/Contact refinements): per active
       // cell the largest variation (max - min) of the preload's contact
       // pressure over its faces on the pad face or the disc's contact face
@@ -57,63 +134,11 @@ namespace squeal
         std::vector<std::pair<Point<2>, double>> nodes;
         for (const auto &[x, p] : nodes_3d)
           nodes.emplace_back(pair.to_plane(x), p);
-        double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
-        for (const auto &[x, p] : nodes)
-          {
-            x_lo = std::min(x_lo, x[0]);
-            x_hi = std::max(x_hi, x[0]);
-            y_lo = std::min(y_lo, x[1]);
-            y_hi = std::max(y_hi, x[1]);
-          }
-        const double eps = 1e-9;
-        // the pad nodes form a tensor grid over the pad face (the preload
-        // runs on the unrefined mesh): the pressure between them bilinear
-        const auto unique_sorted = [&](const unsigned int d) {
-          std::vector<double> v;
-          for (const auto &[x, p] : nodes)
-            v.push_back(x[d]);
-          std::sort(v.begin(), v.end());
-          v.erase(std::unique(v.begin(),
-                              v.end(),
-                              [&](double a, double b) { return b - a < eps; }),
-                  v.end());
-          return v;
-        };
-        const std::vector<double> xs = unique_sorted(0), ys = unique_sorted(1);
-        const auto locate = [&](const std::vector<double> &g, const double x) {
-          unsigned int i = std::upper_bound(g.begin(), g.end(), x) - g.begin();
-          i = std::min<unsigned int>(std::max(i, 1u), g.size() - 1) - 1;
-          return std::pair<unsigned int, double>(
-            i, std::clamp((x - g[i]) / (g[i + 1] - g[i]), 0., 1.));
-        };
-        std::vector<double> grid(xs.size() * ys.size(), 0.);
-        std::vector<bool>   seen(grid.size(), false);
-        for (const auto &[x, p] : nodes)
-          {
-            const unsigned int i = locate(xs, x[0] + eps).first +
-                                   (x[0] > xs.back() - eps ? 1 : 0),
-                               j = locate(ys, x[1] + eps).first +
-                                   (x[1] > ys.back() - eps ? 1 : 0);
-            grid[i * ys.size() + j] = p;
-            seen[i * ys.size() + j] = true;
-          }
-        if (xs.size() < 2 || ys.size() < 2 ||
-            std::count(seen.begin(), seen.end(), false) > 0)
-          throw std::runtime_error(
-            "Mesh/Contact refinements: the preload's pad nodes do not form a "
-            "tensor grid over the pad face (" +
-            std::to_string(nodes.size()) + " nodes, " +
-            std::to_string(xs.size()) + " x " + std::to_string(ys.size()) +
-            " coordinates)");
-        const auto pressure_at = [&](const dealii::Point<2> &x) {
-          const auto [i, t] = locate(xs, x[0]);
-          const auto [j, u] = locate(ys, x[1]);
-          const auto g      = [&](unsigned int a, unsigned int b) {
-            return grid[a * ys.size() + b];
-          };
-          return (1 - t) * (1 - u) * g(i, j) + t * (1 - u) * g(i + 1, j) +
-                 (1 - t) * u * g(i, j + 1) + t * u * g(i + 1, j + 1);
-        };
+        const NodalPressure field(nodes);
+        const double        eps  = NodalPressure::eps;
+        const double        x_lo = field.xs.front(), x_hi = field.xs.back(),
+                     y_lo = field.ys.front(), y_hi = field.ys.back();
+        const auto pressure_at = [&](const Point<2> &x) { return field(x); };
         const unsigned int n_cells = model.triangulation.n_active_cells();
         Vector<float>      indicator(n_cells);
         std::vector<bool>  on_contact(n_cells, false);

@@ -458,6 +458,18 @@ namespace squeal
             element_index[elements[e].id] = e;
           attach_quadratic_geometry(unit, cell_of, coarse, tria);
 
+          return named_sets(unit, cell_of, coarse, vertex_of, element_index);
+        }
+
+        // The element sets, node sets and surfaces as named sets of the
+        // coarse cells (cell_of: element index -> cell index) and faces.
+        io::NamedSets
+        named_sets(const double                                        unit,
+                   const std::vector<unsigned int>                    &cell_of,
+                   const std::vector<Triangulation<3>::cell_iterator> &coarse,
+                   const std::map<long, unsigned int> &vertex_of,
+                   const std::map<long, unsigned int> &element_index) const
+        {
           io::NamedSets sets;
           sets.source = "mesh file '" + file + "'";
           for (const auto &[key, set] : elsets)
