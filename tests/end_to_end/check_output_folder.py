@@ -35,7 +35,7 @@ subsection Mesh
   set Disc cells thickness = 1
 end
 subsection Eigensolver
-  set Maximum frequency = 3000
+  set Maximum frequency = 20000
 end
 subsection Sweep
   set First parameter = disc.E
