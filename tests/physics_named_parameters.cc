@@ -107,11 +107,7 @@ namespace
   double
   energy(const physics::StructuralModel &model, const physics::PETScMatrix &A)
   {
-    physics::PETScVector u(model.locally_owned_dofs, MPI_COMM_WORLD),
-      Au(model.locally_owned_dofs, MPI_COMM_WORLD);
-    VectorTools::interpolate(model.mapping, model.dof_handler, Uniaxial(), u);
-    A.vmult(Au, u);
-    return u * Au;
+    return test_tools::field_energy(model, A, Uniaxial());
   }
 } // namespace
 

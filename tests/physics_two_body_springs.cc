@@ -137,14 +137,7 @@ main(int argc, char **argv)
   model.parts().springs(p0, Ks);
 
   const auto energy = [&](const double ua, const double ub) {
-    physics::PETScVector u(model.locally_owned_dofs, MPI_COMM_WORLD),
-      Ku(model.locally_owned_dofs, MPI_COMM_WORLD);
-    VectorTools::interpolate(model.mapping,
-                             model.dof_handler,
-                             Translations(ua, ub),
-                             u);
-    Ks.vmult(Ku, u);
-    return u * Ku;
+    return test_tools::field_energy(model, Ks, Translations(ua, ub));
   };
   const double delta = 1e-5;
   check("rigid translation of both blocks: no spring energy",

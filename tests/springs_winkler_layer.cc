@@ -47,16 +47,9 @@ namespace
   energy(const physics::StructuralModel                &model,
          const std::function<double(const Point<3> &)> &f)
   {
-    physics::PETScVector u(model.locally_owned_dofs, MPI_COMM_WORLD),
-      ku(model.locally_owned_dofs, MPI_COMM_WORLD);
-    VectorTools::interpolate(model.mapping,
-                             model.dof_handler,
-                             SlidingField(f),
-                             u);
     physics::PETScMatrix K;
     model.parts().springs(model.scene->nominal_point(), K);
-    K.vmult(ku, u);
-    return u * ku;
+    return test_tools::field_energy(model, K, SlidingField(f));
   }
 } // namespace
 

@@ -5,8 +5,10 @@
 #define squeal_tests_test_tools_h
 
 #include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/function.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/numerics/vector_tools.h>
 
 #include <squeal/eigen/mac.h>
 #include <squeal/eigen/qep_solver.h>
@@ -125,6 +127,23 @@ namespace test_tools
       return p;
     }
   };
+
+  /**
+   * u^T A u for the field @p f (3 components, m) interpolated on
+   * @p model's DoFs: twice the energy of @p A (a stiffness [J], a mass
+   * [kg m^2] or a damping matrix) in that field.
+   */
+  inline double
+  field_energy(const squeal::physics::StructuralModel &model,
+               const squeal::physics::PETScMatrix     &A,
+               const dealii::Function<3>              &f)
+  {
+    squeal::physics::PETScVector u(model.locally_owned_dofs, MPI_COMM_WORLD),
+      Au(model.locally_owned_dofs, MPI_COMM_WORLD);
+    dealii::VectorTools::interpolate(model.mapping, model.dof_handler, f, u);
+    A.vmult(Au, u);
+    return u * Au;
+  }
 
   /**
    * The natural frequencies [Hz] in (f_min, f_max) of the undamped
