@@ -10,6 +10,7 @@
 //     zeta = alpha / (2 omega) + beta omega / 2, omega from the undamped
 //     solve of the same model, to 1e-8 relative.
 
+#include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/reduced_model.h>
 #include <squeal/physics/structural_model.h>
 

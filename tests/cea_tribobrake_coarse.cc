@@ -8,6 +8,7 @@
 // - the eigenvalues of the first point are printed to 8 digits: the
 //   .mpirun=2 variant must reproduce the serial ones (numdiff, 1e-8).
 
+#include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/reduced_model.h>
 #include <squeal/physics/structural_model.h>
 

@@ -5,6 +5,7 @@
 // verification.md A2 and an independent SciPy computation (mu_c with
 // Rayleigh damping by bisection: 0.309435).
 
+#include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/reduced_model.h>
 
 #include "test_tools.h"

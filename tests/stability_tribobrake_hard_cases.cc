@@ -18,6 +18,7 @@
 // within 2 % in frequency of the tracked one, the tracked link has the larger
 // MAC).
 
+#include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/reduced_model.h>
 #include <squeal/eigen/tracking.h>
 #include <squeal/physics/structural_model.h>

@@ -14,6 +14,7 @@
 //   eigenvalue equals an independent dense computation (Eigen's real
 //   nonsymmetric solver on the 4 x 4 companion matrix) to 1e-8.
 
+#include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/reduced_model.h>
 #include <squeal/eigen/tracking.h>
 

@@ -10,6 +10,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/mac.h>
 #include <squeal/eigen/qep_solver.h>
 #include <squeal/eigen/reduced_model.h>

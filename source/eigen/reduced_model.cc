@@ -11,24 +11,10 @@
 
 #include <petscmat.h>
 
+#include "dense_block.h"
+
 #include <cmath>
 #include <stdexcept>
-
-extern "C" void
-dgeev_(const char *jobvl,
-       const char *jobvr,
-       const int  *n,
-       double     *a,
-       const int  *lda,
-       double     *wr,
-       double     *wi,
-       double     *vl,
-       const int  *ldvl,
-       double     *vr,
-       const int  *ldvr,
-       double     *work,
-       const int  *lwork,
-       int        *info);
 
 namespace squeal
 {
@@ -37,80 +23,10 @@ namespace squeal
     using namespace dealii;
     using Kind = physics::MatrixParts::Kind;
 
-    namespace
-    {
-      void
-      sum_over_ranks(Eigen::MatrixXd &A, MPI_Comm comm)
-      {
-        MPI_Allreduce(
-          MPI_IN_PLACE, A.data(), A.size(), MPI_DOUBLE, MPI_SUM, comm);
-      }
-
-      // A * B for a sparse PETSc matrix and the locally owned rows of a
-      // dense n x m matrix B (column-major), as the local rows of the result.
-      Eigen::MatrixXd
-      multiply(const PETScMatrix &A, const Eigen::MatrixXd &B)
-      {
-        const PetscInt n_local = B.rows(), m = B.cols();
-        Mat            Bd, W;
-        if (MatCreateDense(A.get_mpi_communicator(),
-                           n_local,
-                           PETSC_DECIDE,
-                           A.m(),
-                           m,
-                           // PETSc only reads B
-                           const_cast<double *>(B.data()),
-                           &Bd) != 0 ||
-            MatMatMult(A, Bd, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &W) != 0)
-          throw std::runtime_error("reduced model: MatMatMult failed");
-        const PetscScalar *w;
-        PetscInt           lda;
-        MatDenseGetLDA(W, &lda);
-        MatDenseGetArrayRead(W, &w);
-        Eigen::MatrixXd result(n_local, m);
-        for (PetscInt j = 0; j < m; ++j)
-          for (PetscInt i = 0; i < n_local; ++i)
-            result(i, j) = w[i + j * lda];
-        MatDenseRestoreArrayRead(W, &w);
-        MatDestroy(&W);
-        MatDestroy(&Bd);
-        return result;
-      }
-
-      // T such that B T is M-orthonormal, from the Gram matrix B^T M B:
-      // every vector is first scaled to unit M-norm (enrichment vectors are
-      // far smaller than modes and must not be taken for dependent ones),
-      // then directions with relative M-norm^2 below 1e-10 are dropped.
-      Eigen::MatrixXd
-      orthonormalising_transform(Eigen::MatrixXd gram)
-      {
-        gram = (gram + gram.transpose()).eval() / 2;
-        Eigen::VectorXd scale(gram.cols());
-        for (int j = 0; j < gram.cols(); ++j)
-          scale[j] = gram(j, j) > 0 ? 1. / std::sqrt(gram(j, j)) : 0.;
-        gram = scale.asDiagonal() * gram * scale.asDiagonal();
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(gram);
-        const double     largest = es.eigenvalues().maxCoeff();
-        std::vector<int> keep;
-        for (int i = 0; i < es.eigenvalues().size(); ++i)
-          if (es.eigenvalues()[i] > 1e-10 * largest)
-            keep.push_back(i);
-        Eigen::MatrixXd T(gram.cols(), keep.size());
-        for (unsigned int j = 0; j < keep.size(); ++j)
-          T.col(j) = scale.asDiagonal() * es.eigenvectors().col(keep[j]) /
-                     std::sqrt(es.eigenvalues()[keep[j]]);
-        return T;
-      }
-
-      Eigen::VectorXd
-      local_part(const PETScVector &v, const IndexSet &owned)
-      {
-        Eigen::VectorXd x(owned.n_elements());
-        for (unsigned int k = 0; k < x.size(); ++k)
-          x[k] = v(owned.nth_index_in_set(k));
-        return x;
-      }
-    } // namespace
+    using internal::local_part;
+    using internal::multiply;
+    using internal::orthonormalising_transform;
+    using internal::sum_over_ranks;
 
     void
     ReducedModel::make_reference_mass(const physics::MatrixParts &model)
@@ -335,123 +251,6 @@ namespace squeal
       has_residuals = with_residuals;
     }
 
-    namespace
-    {
-      // The relative residual of (lambda, x = re + i im) and its real and
-      // imaginary parts r = (lambda^2 M + lambda C + K) x.
-      double
-      residual(const PETScMatrix         &M,
-               const PETScMatrix         &C,
-               const PETScMatrix         &K,
-               const std::complex<double> lambda,
-               const PETScVector         &re,
-               const PETScVector         &im,
-               PETScVector               &r_re,
-               PETScVector               &r_im)
-      {
-        const double               a = lambda.real(), b = lambda.imag();
-        const std::complex<double> l2 = lambda * lambda;
-        PETScVector Mr(re), Mi(re), Cr(re), Ci(re), Kr(re), Ki(re);
-        M.vmult(Mr, re);
-        M.vmult(Mi, im);
-        C.vmult(Cr, re);
-        C.vmult(Ci, im);
-        K.vmult(Kr, re);
-        K.vmult(Ki, im);
-        r_re = Kr;
-        r_re.add(l2.real(), Mr, -l2.imag(), Mi);
-        r_re.add(a, Cr, -b, Ci);
-        r_im = Ki;
-        r_im.add(l2.real(), Mi, l2.imag(), Mr);
-        r_im.add(a, Ci, b, Cr);
-        const auto norm = [](const PETScVector &x, const PETScVector &y) {
-          return std::sqrt(x.norm_sqr() + y.norm_sqr());
-        };
-        return norm(r_re, r_im) /
-               (std::norm(lambda) * norm(Mr, Mi) +
-                std::abs(lambda) * norm(Cr, Ci) + norm(Kr, Ki));
-      }
-    } // namespace
-
-    std::vector<EigenPair>
-    solve_full(const physics::MatrixParts    &model,
-               const parameters::ScalarPoint &point,
-               const BandOptions             &band,
-               ConditionalOStream            &pcout)
-    {
-      PETScMatrix M, K, C;
-      model.mass(point, M);
-      model.stiffness(point, K);
-      model.damping(point, C);
-      // symmetric when no friction part enters K at this point
-      const auto c         = model.coefficients(point);
-      bool       symmetric = true;
-      for (unsigned int k = 0; k < model.size(); ++k)
-        if (model.parts[k].kind == Kind::interface_friction &&
-            c.stiffness[k] != 0. && model.matrix(k).frobenius_norm() > 0.)
-          symmetric = false;
-      const auto modes = solve_undamped(M, K, band, 1.5, symmetric, pcout);
-      std::vector<PETScVector> vectors;
-      for (const auto &m : modes)
-        {
-          vectors.push_back(m.re);
-          if (m.omega2.imag() != 0.)
-            vectors.push_back(m.im);
-        }
-
-      const double                  tolerance = 1e-8;
-      std::unique_ptr<DirectSolver> preconditioner;
-      PETScMatrix                   P;
-      std::vector<EigenPair>        pairs;
-      ReducedModel                  projected;
-      projected.build_from_vectors(model, vectors, false);
-      for (unsigned int round = 0;; ++round)
-        {
-          pairs.clear();
-          double                   worst = 0;
-          std::vector<PETScVector> corrections;
-          for (const auto &r : projected.solve(point, band.f_min, band.f_max))
-            {
-              EigenPair p;
-              p.lambda = r.lambda;
-              projected.expand(r.q, p.re, p.im);
-              PETScVector r_re(p.re), r_im(p.re);
-              p.residual = residual(M, C, K, p.lambda, p.re, p.im, r_re, r_im);
-              worst      = std::max(worst, p.residual);
-              if (p.residual > tolerance)
-                {
-                  corrections.push_back(std::move(r_re));
-                  corrections.push_back(std::move(r_im));
-                }
-              pairs.push_back(std::move(p));
-            }
-          if (corrections.empty() || round == 6)
-            {
-              pcout << "  full solver: " << pairs.size()
-                    << " modes in the band, largest relative residual " << worst
-                    << " after " << round << " refinement rounds" << std::endl;
-              return pairs;
-            }
-          if (!preconditioner)
-            {
-              // P(tau) = K + tau C + tau^2 M, tau = -2 pi f_t (regular).
-              const double tau = -2. * numbers::PI * band.target_frequency;
-              P.reinit(K);
-              P.copy_from(K);
-              P.add(tau, C);
-              P.add(tau * tau, M);
-              preconditioner = std::make_unique<DirectSolver>(P);
-            }
-          for (auto &r : corrections)
-            {
-              PETScVector t(r);
-              preconditioner->solve(r, t);
-              r = t;
-            }
-          projected.enrich(model, corrections, false);
-        }
-    }
-
     std::vector<ReducedEigenPair>
     ReducedModel::solve(const parameters::ScalarPoint &point,
                         const double                   f_min,
@@ -469,59 +268,10 @@ namespace squeal
       };
       const Eigen::MatrixXd M = combine(c.mass), K = combine(c.stiffness),
                             C = combine(c.damping);
-      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
-
-      Eigen::MatrixXd A         = Eigen::MatrixXd::Zero(2 * r, 2 * r);
-      A.topRightCorner(r, r)    = Eigen::MatrixXd::Identity(r, r);
-      A.bottomLeftCorner(r, r)  = -lu.solve(K);
-      A.bottomRightCorner(r, r) = -lu.solve(C);
-
-      const int           n = 2 * r;
-      std::vector<double> wr(n), wi(n), vr(n * n), work(1);
-      int                 lwork = -1, info = 0, one = 1;
-      double              dummy;
-      // LAPACK's two calls: the workspace size, then the eigenproblem
-      const auto geev = [&]() {
-        dgeev_("N",
-               "V",
-               &n,
-               A.data(),
-               &n,
-               wr.data(),
-               wi.data(),
-               &dummy,
-               &one,
-               vr.data(),
-               &n,
-               work.data(),
-               &lwork,
-               &info);
-      };
-      geev();
-      lwork = static_cast<int>(work[0]);
-      work.resize(lwork);
-      geev();
-      if (info != 0)
-        throw std::runtime_error("reduced model: LAPACK dgeev failed, info = " +
-                                 std::to_string(info));
-
-      using Complex = std::complex<double>;
+      using Complex           = std::complex<double>;
       std::vector<ReducedEigenPair> pairs;
-      for (int j = 0; j < n; ++j)
-        {
-          // one of each conjugate pair: the column with Im lambda > 0
-          if (wi[j] <= 0.)
-            continue;
-          const Complex lambda(wr[j], wi[j]);
-          const double  f = lambda.imag() / (2 * M_PI);
-          if (f < f_min || f > f_max)
-            continue;
-          Eigen::VectorXcd q(r);
-          for (int i = 0; i < r; ++i)
-            q[i] = {vr[i + j * n], vr[i + (j + 1) * n]};
-          q.normalize();
-          pairs.push_back({lambda, q, -1.});
-        }
+      for (auto &pair : internal::projected_eigenpairs(M, C, K, f_min, f_max))
+        pairs.push_back({pair.lambda, std::move(pair.q), -1.});
       if (has_residuals && !pairs.empty())
         {
           // ||sum_k a_k A_k V q||^2 = sum_kl conj(a_k) a_l h_kl with
@@ -584,9 +334,6 @@ namespace squeal
                  std::abs(lambda) * norm(damping) + norm(stiffness));
             }
         }
-      std::sort(pairs.begin(), pairs.end(), [](const auto &a, const auto &b) {
-        return a.lambda.imag() < b.lambda.imag();
-      });
       return pairs;
     }
 

@@ -16,6 +16,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
+#include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/reduced_model.h>
 #include <squeal/eigen/tracking.h>
 #include <squeal/physics/structural_model.h>

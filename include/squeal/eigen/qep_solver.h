@@ -45,6 +45,14 @@ namespace squeal
       double       target_frequency = 100.;   ///< Hz; shift tau = -2 pi f_t
       double       tolerance        = 1e-10;  ///< relative, SLEPc
       unsigned int initial_nev      = 40; ///< first guess of eigenvalues wanted
+      /// Largest relative residual on the full damped model that the full
+      /// solver accepts (eigen/full_solver.h).
+      double residual_tolerance = 1e-10;
+      /// The full solver's basis holds every mode of the symmetric problem
+      /// up to this times f_max.
+      double basis_factor = 1.5;
+      /// Refinement rounds of the full solver before it gives up.
+      unsigned int max_rounds = 20;
     };
 
     /**

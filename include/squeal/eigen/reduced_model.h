@@ -144,23 +144,6 @@ namespace squeal
       MPI_Comm                                  comm;
     };
 
-    /**
-     * The full solver: every eigenpair of (lambda^2 M + lambda C + K) phi = 0
-     * with frequency in [f_min, f_max] at the parameter point @p p. The
-     * undamped friction-coupled modes up to 1.5 f_max
-     * (solve_undamped, GNHEP) span a first subspace on which the damped
-     * problem is solved; then, as in a block Davidson method, the residuals
-     * of the eigenpairs, preconditioned by the real factorisation of
-     * P(tau) = tau^2 M + tau C + K, are added to the subspace until every
-     * relative residual on the full model is below 1e-8 (at most 6 rounds).
-     * Each pair carries its residual. Sorted by frequency.
-     * @throws std::runtime_error if an eigensolve fails.
-     */
-    std::vector<EigenPair>
-    solve_full(const physics::MatrixParts    &model,
-               const parameters::ScalarPoint &p,
-               const BandOptions             &band,
-               dealii::ConditionalOStream    &pcout);
   } // namespace eigen
 } // namespace squeal
 

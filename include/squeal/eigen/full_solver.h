@@ -1,0 +1,100 @@
+#ifndef squeal_eigen_full_solver_h
+#define squeal_eigen_full_solver_h
+
+/**
+ * @file
+ * The full solver of the complex eigenvalue analysis: every eigenpair of
+ * (lambda^2 M + lambda C + K) phi = 0 with Im lambda / 2 pi in a band, with
+ * a count that proves no mode of the symmetric problem is left out and a
+ * residual on the full model below a stated tolerance for each pair.
+ *
+ * 1. Count. K_s = K_structural + K_n (every stiffness part but friction) and
+ *    M are symmetric, so the number of eigenvalues omega^2 of
+ *    K_s phi = omega^2 M phi below sigma equals the number of negative
+ *    pivots of the LDL^T factorisation of K_s - sigma M (Sylvester's law
+ *    of inertia; MUMPS through PETSc MatGetInertia). It is taken at
+ *    (2 pi f_min)^2, (2 pi f_max)^2 and (2 pi b f_max)^2 (b: the basis
+ *    factor, default 1.5).
+ * 2. Symmetric modes. SLEPc Krylov-Schur on the symmetric-definite pencil
+ *    with shift-and-invert at -(2 pi f_t)^2 (MUMPS Cholesky) is asked for
+ *    exactly as many eigenpairs as the count of step 1 puts below
+ *    (2 pi b f_max)^2; the solve must return every one of them, or it fails.
+ * 3. Projection. The damped friction-coupled problem is projected
+ *    (Rayleigh-Ritz) on these modes Phi and their static corrections
+ *    P^-1 [C Phi, (K - K_s) Phi], P = K_s + (2 pi f_t)^2 M (one block solve
+ *    with the factorisation of step 2), M-orthonormalised; the projected
+ *    quadratic problem is solved densely (2r x 2r companion, LAPACK dgeev).
+ * 4. Refinement (block Davidson). The residual r of every Ritz pair in the
+ *    band whose relative residual
+ *    ||r|| / (|lambda|^2 ||M x|| + |lambda| ||C x|| + ||K x||) exceeds the
+ *    tolerance is preconditioned by P^-1 and added to the subspace, until
+ *    every pair is below it or the round limit is reached. The residuals
+ *    come from the stored products M V, C V, K V of the subspace V, so a
+ *    round's sparse work is the new block's products only.
+ *
+ * The returned pairs carry their residuals; the solver does not throw when
+ * some stay above the tolerance (FullSolveReport::above_tolerance says how
+ * many): the analysis decides (analyses/cea.h).
+ */
+
+#include <deal.II/base/conditional_ostream.h>
+
+#include <squeal/eigen/qep_solver.h>
+#include <squeal/parameters/parameters.h>
+#include <squeal/physics/structural_model.h>
+
+#include <vector>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    /** What a full solve counted, found and how far it converged. */
+    struct FullSolveReport
+    {
+      /// modes of (K_s, M) with frequency in [f_min, f_max], by inertia
+      unsigned int symmetric_in_band = 0;
+      /// modes of (K_s, M) up to basis_factor f_max, by inertia; every
+      /// one of them is in the basis
+      unsigned int symmetric_in_basis = 0;
+      unsigned int basis_size         = 0; ///< r, final subspace dimension
+      unsigned int rounds             = 0; ///< refinement rounds run
+      double       largest_residual   = 0; ///< relative, over the pairs
+      unsigned int above_tolerance    = 0; ///< pairs above the tolerance
+      double       seconds            = 0; ///< wall time of the solve [s]
+    };
+
+    /**
+     * The number of eigenvalues omega^2 < sigma of K x = omega^2 M x for
+     * each sigma of @p sigmas [1/s^2], by Sylvester's law of inertia: the
+     * negative pivots of an LDL^T factorisation of K - sigma M (MUMPS,
+     * one symbolic factorisation for all shifts). K, M symmetric n x n,
+     * M positive semi-definite. Serial and MPI.
+     * @throws std::runtime_error if the factorisation fails or K - sigma M
+     *   is singular (sigma an eigenvalue).
+     */
+    std::vector<unsigned int>
+    count_eigenvalues_below(const PETScMatrix         &K,
+                            const PETScMatrix         &M,
+                            const std::vector<double> &sigmas);
+
+    /**
+     * Every eigenpair of (lambda^2 M + lambda C + K) phi = 0 with
+     * Im lambda / 2 pi in [band.f_min, band.f_max] [Hz] at the parameter
+     * point @p p, sorted by frequency, each with its relative residual on
+     * the full model (see the file's description for the method; counts
+     * and residuals go to @p report when given). lambda in 1/s.
+     * @throws std::runtime_error if a factorisation or an eigensolve
+     *   fails, or the symmetric solve returns fewer modes than its
+     *   inertia count.
+     */
+    std::vector<EigenPair>
+    solve_full(const physics::MatrixParts    &model,
+               const parameters::ScalarPoint &p,
+               const BandOptions             &band,
+               dealii::ConditionalOStream    &pcout,
+               FullSolveReport               *report = nullptr);
+  } // namespace eigen
+} // namespace squeal
+
+#endif

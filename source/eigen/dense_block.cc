@@ -1,0 +1,223 @@
+// Dense blocks over the locally owned rows: sparse products, block solves,
+// M-orthonormalisation and the companion eigenproblem (see dense_block.h).
+
+#include "dense_block.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <petscksp.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+extern "C" void
+dgeev_(const char *jobvl,
+       const char *jobvr,
+       const int  *n,
+       double     *a,
+       const int  *lda,
+       double     *wr,
+       double     *wi,
+       double     *vl,
+       const int  *ldvl,
+       double     *vr,
+       const int  *ldvr,
+       double     *work,
+       const int  *lwork,
+       int        *info);
+
+namespace squeal
+{
+  namespace eigen
+  {
+    namespace internal
+    {
+      void
+      sum_over_ranks(Eigen::MatrixXd &A, MPI_Comm comm)
+      {
+        MPI_Allreduce(
+          MPI_IN_PLACE, A.data(), A.size(), MPI_DOUBLE, MPI_SUM, comm);
+      }
+
+      namespace
+      {
+        // A PETSc dense matrix over the local rows of B (column-major,
+        // shared storage; PETSc only reads it when it is an input).
+        Mat
+        wrap(const PETScMatrix &A, const Eigen::MatrixXd &B)
+        {
+          Mat Bd;
+          if (MatCreateDense(A.get_mpi_communicator(),
+                             B.rows(),
+                             PETSC_DECIDE,
+                             A.m(),
+                             B.cols(),
+                             const_cast<double *>(B.data()),
+                             &Bd) != 0)
+            throw std::runtime_error("dense block: MatCreateDense failed");
+          return Bd;
+        }
+
+        Eigen::MatrixXd
+        local_rows(Mat W, const PetscInt n_local, const PetscInt m)
+        {
+          const PetscScalar *w;
+          PetscInt           lda;
+          MatDenseGetLDA(W, &lda);
+          MatDenseGetArrayRead(W, &w);
+          Eigen::MatrixXd result(n_local, m);
+          for (PetscInt j = 0; j < m; ++j)
+            for (PetscInt i = 0; i < n_local; ++i)
+              result(i, j) = w[i + j * lda];
+          MatDenseRestoreArrayRead(W, &w);
+          return result;
+        }
+      } // namespace
+
+      Eigen::MatrixXd
+      multiply(const PETScMatrix &A, const Eigen::MatrixXd &B)
+      {
+        Mat Bd = wrap(A, B), W;
+        if (MatMatMult(A, Bd, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &W) != 0)
+          throw std::runtime_error("dense block: MatMatMult failed");
+        Eigen::MatrixXd result = local_rows(W, B.rows(), B.cols());
+        MatDestroy(&W);
+        MatDestroy(&Bd);
+        return result;
+      }
+
+      Eigen::MatrixXd
+      solve_block(void *ksp, const PETScMatrix &A, const Eigen::MatrixXd &B)
+      {
+        Eigen::MatrixXd X(B.rows(), B.cols());
+        if (B.cols() == 0)
+          return X;
+        Mat Bd = wrap(A, B), Xd = wrap(A, X);
+        if (KSPMatSolve(static_cast<KSP>(ksp), Bd, Xd) != 0)
+          throw std::runtime_error("dense block: KSPMatSolve failed");
+        MatDestroy(&Xd);
+        MatDestroy(&Bd);
+        return X;
+      }
+
+      Eigen::MatrixXd
+      orthonormalising_transform(Eigen::MatrixXd gram)
+      {
+        gram = (gram + gram.transpose()).eval() / 2;
+        Eigen::VectorXd scale(gram.cols());
+        for (int j = 0; j < gram.cols(); ++j)
+          scale[j] = gram(j, j) > 0 ? 1. / std::sqrt(gram(j, j)) : 0.;
+        gram = scale.asDiagonal() * gram * scale.asDiagonal();
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(gram);
+        const double                                   largest =
+          gram.cols() > 0 ? es.eigenvalues().maxCoeff() : 0.;
+        std::vector<int> keep;
+        for (int i = 0; i < es.eigenvalues().size(); ++i)
+          if (es.eigenvalues()[i] > 1e-10 * largest)
+            keep.push_back(i);
+        Eigen::MatrixXd T(gram.cols(), keep.size());
+        for (unsigned int j = 0; j < keep.size(); ++j)
+          T.col(j) = scale.asDiagonal() * es.eigenvectors().col(keep[j]) /
+                     std::sqrt(es.eigenvalues()[keep[j]]);
+        return T;
+      }
+
+      Eigen::VectorXd
+      local_part(const PETScVector &v, const dealii::IndexSet &owned)
+      {
+        Eigen::VectorXd x(owned.n_elements());
+        for (unsigned int k = 0; k < x.size(); ++k)
+          x[k] = v(owned.nth_index_in_set(k));
+        return x;
+      }
+
+      std::vector<ProjectedPair>
+      projected_eigenpairs(const Eigen::MatrixXd &M,
+                           const Eigen::MatrixXd &C,
+                           const Eigen::MatrixXd &K,
+                           const double           f_min,
+                           const double           f_max,
+                           const double           shift)
+      {
+        const int r = M.rows();
+        if (r == 0)
+          return {};
+        Eigen::MatrixXd A      = Eigen::MatrixXd::Zero(2 * r, 2 * r);
+        A.topRightCorner(r, r) = Eigen::MatrixXd::Identity(r, r);
+        if (shift == 0.)
+          {
+            const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
+            A.bottomLeftCorner(r, r)  = -lu.solve(K);
+            A.bottomRightCorner(r, r) = -lu.solve(C);
+          }
+        else
+          {
+            // lambda = tau + 1/mu: mu^2 P(tau) + mu (C + 2 tau M) + M = 0
+            const Eigen::MatrixXd P = shift * shift * M + shift * C + K;
+            const Eigen::PartialPivLU<Eigen::MatrixXd> lu(P);
+            A.bottomLeftCorner(r, r)  = -lu.solve(M);
+            A.bottomRightCorner(r, r) = -lu.solve(C + 2. * shift * M);
+          }
+        if (!A.allFinite())
+          throw std::runtime_error(
+            "projected eigenproblem: the projected mass matrix is singular");
+
+        const int           n = 2 * r;
+        std::vector<double> wr(n), wi(n), vr(n * n), work(1);
+        int                 lwork = -1, info = 0, one = 1;
+        double              dummy;
+        // LAPACK's two calls: the workspace size, then the eigenproblem
+        const auto geev = [&]() {
+          dgeev_("N",
+                 "V",
+                 &n,
+                 A.data(),
+                 &n,
+                 wr.data(),
+                 wi.data(),
+                 &dummy,
+                 &one,
+                 vr.data(),
+                 &n,
+                 work.data(),
+                 &lwork,
+                 &info);
+        };
+        geev();
+        lwork = static_cast<int>(work[0]);
+        work.resize(lwork);
+        geev();
+        if (info != 0)
+          throw std::runtime_error(
+            "projected eigenproblem: LAPACK dgeev failed, info = " +
+            std::to_string(info));
+
+        std::vector<ProjectedPair> pairs;
+        for (int j = 0; j < n; ++j)
+          {
+            // one of each conjugate pair: the column with Im lambda > 0
+            // (Im mu < 0 when lambda = tau + 1/mu)
+            if (wi[j] <= 0.)
+              continue;
+            const std::complex<double> mu(wr[j], wi[j]);
+            const std::complex<double> lambda =
+              shift == 0. ? mu : shift + 1. / std::conj(mu);
+            const double f = lambda.imag() / (2 * M_PI);
+            if (f < f_min || f > f_max)
+              continue;
+            Eigen::VectorXcd q(r);
+            for (int i = 0; i < r; ++i)
+              q[i] = {vr[i + j * n],
+                      (shift == 0. ? 1. : -1.) * vr[i + (j + 1) * n]};
+            q.normalize();
+            pairs.push_back({lambda, q});
+          }
+        std::sort(pairs.begin(), pairs.end(), [](const auto &a, const auto &b) {
+          return a.lambda.imag() < b.lambda.imag();
+        });
+        return pairs;
+      }
+    } // namespace internal
+  }   // namespace eigen
+} // namespace squeal

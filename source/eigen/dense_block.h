@@ -1,0 +1,86 @@
+// Dense blocks of vectors over the locally owned rows of a distributed
+// PETSc layout, shared by the reduced model and the full solver: products
+// with sparse matrices, sums over the ranks, M-orthonormalisation and the
+// dense companion eigenproblem of a projected quadratic problem.
+
+#ifndef squeal_eigen_dense_block_h
+#define squeal_eigen_dense_block_h
+
+#include <deal.II/base/index_set.h>
+
+#include <squeal/eigen/qep_solver.h>
+
+#include <Eigen/Dense>
+
+#include <complex>
+#include <vector>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    namespace internal
+    {
+      /** A := sum of A over the ranks of @p comm. */
+      void
+      sum_over_ranks(Eigen::MatrixXd &A, MPI_Comm comm);
+
+      /**
+       * A B for a sparse n x n matrix A and the locally owned rows of a
+       * dense n x m block B, as the local rows of the result.
+       * @throws std::runtime_error if PETSc fails.
+       */
+      Eigen::MatrixXd
+      multiply(const PETScMatrix &A, const Eigen::MatrixXd &B);
+
+      /**
+       * X = A^-1 B with a factorised solver for the locally owned rows of a
+       * dense n x m block B (one multi-right-hand-side solve).
+       * @throws std::runtime_error if PETSc fails.
+       */
+      Eigen::MatrixXd
+      solve_block(void *ksp, const PETScMatrix &A, const Eigen::MatrixXd &B);
+
+      /**
+       * T such that B T is M-orthonormal, from the Gram matrix B^T M B:
+       * every vector is first scaled to unit M-norm, then directions with
+       * relative M-norm^2 below 1e-10 are dropped.
+       */
+      Eigen::MatrixXd
+      orthonormalising_transform(Eigen::MatrixXd gram);
+
+      /** The locally owned entries of @p v, in the order of @p owned. */
+      Eigen::VectorXd
+      local_part(const PETScVector &v, const dealii::IndexSet &owned);
+
+      /** One eigenpair lambda [1/s], coordinates q of a projected problem. */
+      struct ProjectedPair
+      {
+        std::complex<double> lambda;
+        Eigen::VectorXcd     q; ///< unit 2-norm
+      };
+
+      /**
+       * The eigenpairs with Im lambda > 0 and Im lambda / 2 pi in
+       * [f_min, f_max] [Hz] of (lambda^2 M + lambda C + K) q = 0, r x r
+       * dense, through the 2r x 2r companion matrix (LAPACK dgeev), sorted
+       * by frequency. With a real @p shift tau != 0 [1/s] the companion is
+       * that of the reversed problem in mu = 1 / (lambda - tau),
+       * mu^2 P(tau) + mu (C + 2 tau M) + M = 0, P(tau) = tau^2 M + tau C + K:
+       * the eigenvalues nearest tau are then the largest, and are computed
+       * to a relative accuracy that the high frequencies of the subspace do
+       * not spoil. @throws std::runtime_error if LAPACK fails or M (or
+       * P(tau)) is singular.
+       */
+      std::vector<ProjectedPair>
+      projected_eigenpairs(const Eigen::MatrixXd &M,
+                           const Eigen::MatrixXd &C,
+                           const Eigen::MatrixXd &K,
+                           const double           f_min,
+                           const double           f_max,
+                           const double           shift = 0.);
+    } // namespace internal
+  }   // namespace eigen
+} // namespace squeal
+
+#endif

@@ -1,0 +1,472 @@
+// The full solver: inertia counts of the symmetric problem, its modes up to
+// the basis frequency, and the damped friction-coupled problem refined on
+// their span by block Davidson rounds (see full_solver.h).
+
+#include <deal.II/base/mpi.h>
+
+#include <squeal/eigen/full_solver.h>
+
+#include <petscksp.h>
+#include <slepceps.h>
+
+#include "dense_block.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    using namespace dealii;
+    using internal::multiply;
+    using internal::sum_over_ranks;
+
+    namespace
+    {
+      void
+      check(const PetscErrorCode ierr, const char *what)
+      {
+        if (ierr != 0)
+          throw std::runtime_error(std::string("full solver: PETSc/SLEPc "
+                                               "call failed: ") +
+                                   what + " (error code " +
+                                   std::to_string(ierr) + ")");
+      }
+
+      double
+      seconds_since(const std::chrono::steady_clock::time_point start)
+      {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                             start)
+          .count();
+      }
+
+      // The symmetric modes up to the basis frequency, by shift-and-invert
+      // Krylov-Schur with a Cholesky factorisation that stays alive as the
+      // preconditioner P^-1 of the refinement.
+      class SymmetricModes
+      {
+      public:
+        SymmetricModes(const PETScMatrix &K,
+                       const PETScMatrix &M,
+                       const double       sigma,
+                       const double       tolerance)
+        {
+          check(EPSCreate(M.get_mpi_communicator(), &eps), "EPSCreate");
+          check(EPSSetOperators(eps, K, M), "EPSSetOperators");
+          check(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
+          check(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
+          check(EPSSetTarget(eps, sigma), "EPSSetTarget");
+          check(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE),
+                "EPSSetWhichEigenpairs");
+          check(EPSSetTolerances(eps, tolerance, 2000), "EPSSetTolerances");
+          ST st;
+          PC pc;
+          check(EPSGetST(eps, &st), "EPSGetST");
+          check(STSetType(st, STSINVERT), "STSetType");
+          check(STGetKSP(st, &ksp), "STGetKSP");
+          check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+          check(KSPGetPC(ksp, &pc), "KSPGetPC");
+          check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+          check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS),
+                "PCFactorSetMatSolverType");
+          check(EPSSetFromOptions(eps), "EPSSetFromOptions");
+        }
+
+        ~SymmetricModes()
+        {
+          EPSDestroy(&eps);
+        }
+
+        SymmetricModes(const SymmetricModes &) = delete;
+        SymmetricModes &
+        operator=(const SymmetricModes &) = delete;
+
+        // The eigenpairs with omega^2 below @p top, M-orthonormal, sorted;
+        // @p wanted of them exist (the inertia count).
+        std::vector<UndampedMode>
+        solve(const PETScMatrix &M, const unsigned int wanted, const double top)
+        {
+          std::vector<UndampedMode> modes;
+          for (unsigned int attempt = 0; attempt < 2; ++attempt)
+            {
+              const PetscInt nev =
+                std::min<PetscInt>(M.m(), wanted + 2 + 10 * attempt);
+              check(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT),
+                    "EPSSetDimensions");
+              check(EPSSolve(eps), "EPSSolve");
+              PetscInt nconv;
+              check(EPSGetConverged(eps, &nconv), "EPSGetConverged");
+              modes.clear();
+              PETScVector xr(M.locally_owned_range_indices(),
+                             M.get_mpi_communicator());
+              for (PetscInt i = 0; i < nconv; ++i)
+                {
+                  PetscScalar kr, ki;
+                  check(EPSGetEigenpair(eps, i, &kr, &ki, xr, nullptr),
+                        "EPSGetEigenpair");
+                  if (kr < top)
+                    modes.push_back({{kr, 0.}, xr, PETScVector()});
+                }
+              if (modes.size() == wanted)
+                break;
+            }
+          std::sort(modes.begin(),
+                    modes.end(),
+                    [](const auto &a, const auto &b) {
+                      return a.omega2.real() < b.omega2.real();
+                    });
+          return modes;
+        }
+
+        // the factorised K - sigma M
+        void *
+        solver() const
+        {
+          return ksp;
+        }
+
+      private:
+        EPS eps;
+        KSP ksp;
+      };
+
+      // The subspace V of the refinement with its products M V, C V, K V
+      // and the projected matrices V^T A V (local rows; V M-orthonormal).
+      struct Subspace
+      {
+        const PETScMatrix &M, &C, &K;
+        MPI_Comm           comm;
+        Eigen::MatrixXd    V, WM, WC, WK, Mr, Cr, Kr;
+
+        // Appends the part of the block T M-orthogonal to V: two passes of
+        // T -= V (V^T M V)^-1 V^T M T, exact whatever V's orthonormality;
+        // columns whose remainder is below 1e-8 of their M-norm are dropped,
+        // the rest M-orthonormalised among themselves (the first block by
+        // a Cholesky factor of its Gram matrix, which keeps modes that are
+        // M-orthonormal nearly as they are).
+        void
+        append(Eigen::MatrixXd T)
+        {
+          Eigen::VectorXd in_span = Eigen::VectorXd::Zero(T.cols());
+          for (unsigned int pass = 0; pass < 2 && V.cols() > 0; ++pass)
+            {
+              Eigen::MatrixXd coefficients = WM.transpose() * T;
+              sum_over_ranks(coefficients, comm);
+              coefficients = Mr.llt().solve(coefficients);
+              T -= V * coefficients;
+              if (pass == 0)
+                in_span = (coefficients.transpose() * Mr * coefficients)
+                            .diagonal()
+                            .cwiseMax(0.);
+            }
+          Eigen::MatrixXd MT   = multiply(M, T);
+          Eigen::MatrixXd gram = T.transpose() * MT;
+          sum_over_ranks(gram, comm);
+          std::vector<int> keep;
+          for (int j = 0; j < T.cols(); ++j)
+            if (gram(j, j) > 1e-16 * (gram(j, j) + in_span[j]))
+              keep.push_back(j);
+          if (keep.empty())
+            return;
+          Eigen::MatrixXd Tk(T.rows(), keep.size()), MTk(T.rows(), keep.size()),
+            gram_k(keep.size(), keep.size());
+          for (unsigned int a = 0; a < keep.size(); ++a)
+            {
+              Tk.col(a)  = T.col(keep[a]);
+              MTk.col(a) = MT.col(keep[a]);
+              for (unsigned int b = 0; b < keep.size(); ++b)
+                gram_k(a, b) = gram(keep[a], keep[b]);
+            }
+          Eigen::MatrixXd S;
+          if (V.cols() == 0)
+            {
+              // S = L^-T, gram = L L^T
+              const Eigen::LLT<Eigen::MatrixXd> llt(gram_k);
+              if (llt.info() != Eigen::Success)
+                throw std::runtime_error(
+                  "full solver: the symmetric modes are linearly dependent");
+              S = llt.matrixU().solve(
+                Eigen::MatrixXd::Identity(keep.size(), keep.size()));
+            }
+          else
+            S = internal::orthonormalising_transform(gram_k);
+          const Eigen::MatrixXd N       = Tk * S;
+          const Eigen::MatrixXd NM      = MTk * S;
+          const Eigen::MatrixXd NC      = multiply(C, N);
+          const Eigen::MatrixXd NK      = multiply(K, N);
+          const auto            project = [&](const Eigen::MatrixXd &X,
+                                   const Eigen::MatrixXd &Y) {
+            Eigen::MatrixXd A = X.transpose() * Y;
+            sum_over_ranks(A, comm);
+            return A;
+          };
+          if (V.cols() == 0)
+            {
+              V  = N;
+              WM = NM;
+              WC = NC;
+              WK = NK;
+              Mr = project(V, WM);
+              Cr = project(V, WC);
+              Kr = project(V, WK);
+              return;
+            }
+          const auto grow = [&](Eigen::MatrixXd       &Ar,
+                                const Eigen::MatrixXd &W_old,
+                                const Eigen::MatrixXd &W_new) {
+            const int       r = V.cols(), q = N.cols();
+            Eigen::MatrixXd A(r + q, r + q);
+            A << Ar, project(V, W_new), project(N, W_old), project(N, W_new);
+            Ar = A;
+          };
+          grow(Mr, WM, NM);
+          grow(Cr, WC, NC);
+          grow(Kr, WK, NK);
+          const auto extend = [](Eigen::MatrixXd &X, const Eigen::MatrixXd &Y) {
+            Eigen::MatrixXd Z(Y.rows(), X.cols() + Y.cols());
+            Z << X, Y;
+            X = Z;
+          };
+          extend(V, N);
+          extend(WM, NM);
+          extend(WC, NC);
+          extend(WK, NK);
+        }
+      };
+
+      // The relative residuals of the Ritz pairs (V q, lambda) on the full
+      // model, and the residual vectors [Re r, Im r] of those above @p tol.
+      std::vector<double>
+      residuals(const Subspace                             &s,
+                const std::vector<internal::ProjectedPair> &pairs,
+                const double                                tol,
+                Eigen::MatrixXd                            &corrections)
+      {
+        const int       m = pairs.size(), r = s.V.cols();
+        Eigen::MatrixXd Qr(r, m), Qi(r, m);
+        for (int j = 0; j < m; ++j)
+          {
+            Qr.col(j) = pairs[j].q.real();
+            Qi.col(j) = pairs[j].q.imag();
+          }
+        const Eigen::MatrixXd Mr = s.WM * Qr, Mi = s.WM * Qi, Cr = s.WC * Qr,
+                              Ci = s.WC * Qi, Kr = s.WK * Qr, Ki = s.WK * Qi;
+        Eigen::MatrixXd Rr(Kr.rows(), m), Ri(Kr.rows(), m);
+        for (int j = 0; j < m; ++j)
+          {
+            const std::complex<double> l = pairs[j].lambda, l2 = l * l;
+            Rr.col(j) = Kr.col(j) + l.real() * Cr.col(j) -
+                        l.imag() * Ci.col(j) + l2.real() * Mr.col(j) -
+                        l2.imag() * Mi.col(j);
+            Ri.col(j) = Ki.col(j) + l.real() * Ci.col(j) +
+                        l.imag() * Cr.col(j) + l2.real() * Mi.col(j) +
+                        l2.imag() * Mr.col(j);
+          }
+        // squared column norms of R, M x, C x, K x, summed over the ranks
+        Eigen::MatrixXd norms(4, m);
+        norms.row(0) = Rr.colwise().squaredNorm() + Ri.colwise().squaredNorm();
+        norms.row(1) = Mr.colwise().squaredNorm() + Mi.colwise().squaredNorm();
+        norms.row(2) = Cr.colwise().squaredNorm() + Ci.colwise().squaredNorm();
+        norms.row(3) = Kr.colwise().squaredNorm() + Ki.colwise().squaredNorm();
+        sum_over_ranks(norms, s.comm);
+        norms = norms.cwiseSqrt();
+        std::vector<double> result(m);
+        std::vector<int>    above;
+        for (int j = 0; j < m; ++j)
+          {
+            const double l = std::abs(pairs[j].lambda);
+            result[j]      = norms(0, j) /
+                        (l * l * norms(1, j) + l * norms(2, j) + norms(3, j));
+            if (result[j] > tol)
+              above.push_back(j);
+          }
+        corrections.resize(Rr.rows(), 2 * above.size());
+        for (unsigned int a = 0; a < above.size(); ++a)
+          {
+            corrections.col(2 * a)     = Rr.col(above[a]);
+            corrections.col(2 * a + 1) = Ri.col(above[a]);
+          }
+        return result;
+      }
+    } // namespace
+
+    std::vector<unsigned int>
+    count_eigenvalues_below(const PETScMatrix         &K,
+                            const PETScMatrix         &M,
+                            const std::vector<double> &sigmas)
+    {
+      std::vector<unsigned int> counts;
+      if (sigmas.empty())
+        return counts;
+      PETScMatrix A;
+      A.reinit(K);
+      Mat           F;
+      IS            rows, columns;
+      MatFactorInfo info;
+      check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
+      check(MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F),
+            "MatGetFactor (MUMPS LDL^T)");
+      // the inertia over every rank needs MUMPS without a ScaLAPACK root
+      // and the zero count needs its null-pivot detection
+      check(MatMumpsSetIcntl(F, 13, 1), "MatMumpsSetIcntl");
+      check(MatMumpsSetIcntl(F, 24, 1), "MatMumpsSetIcntl");
+      check(MatGetOrdering(A, MATORDERINGNATURAL, &rows, &columns),
+            "MatGetOrdering");
+      bool symbolic = false;
+      for (const double sigma : sigmas)
+        {
+          A.copy_from(K);
+          A.add(-sigma, M);
+          if (!symbolic)
+            check(MatCholeskyFactorSymbolic(F, A, rows, &info),
+                  "MatCholeskyFactorSymbolic (MUMPS LDL^T)");
+          symbolic = true;
+          check(MatCholeskyFactorNumeric(F, A, &info),
+                "MatCholeskyFactorNumeric (MUMPS LDL^T)");
+          PetscInt negative, zero, positive;
+          check(MatGetInertia(F, &negative, &zero, &positive), "MatGetInertia");
+          if (zero != 0)
+            {
+              MatDestroy(&F);
+              throw std::runtime_error(
+                "inertia count: K - sigma M is singular at sigma = " +
+                std::to_string(sigma) +
+                " 1/s^2 (an eigenvalue lies on a band edge: move the "
+                "Eigensolver frequencies by a fraction of a hertz)");
+            }
+          counts.push_back(negative);
+        }
+      ISDestroy(&rows);
+      ISDestroy(&columns);
+      MatDestroy(&F);
+      return counts;
+    }
+
+    std::vector<EigenPair>
+    solve_full(const physics::MatrixParts    &model,
+               const parameters::ScalarPoint &point,
+               const BandOptions             &band,
+               ConditionalOStream            &pcout,
+               FullSolveReport               *report)
+    {
+      const auto  start = std::chrono::steady_clock::now();
+      PETScMatrix M, C, K, K_s;
+      model.mass(point, M);
+      model.stiffness(point, K);
+      model.damping(point, C);
+      model.symmetric_stiffness(point, K_s);
+      const double w_t    = 2. * numbers::PI * band.target_frequency;
+      const auto   square = [](const double f) {
+        return std::pow(2. * numbers::PI * f, 2);
+      };
+      const double sigma  = -w_t * w_t;
+      const double top    = square(band.basis_factor * band.f_max);
+      const auto   counts = count_eigenvalues_below(
+        K_s, M, {sigma, square(band.f_min), square(band.f_max), top});
+      if (counts[0] > 0)
+        throw std::runtime_error(
+          "full solver: the stiffness without friction has " +
+          std::to_string(counts[0]) + " eigenvalue(s) below -(2 pi " +
+          std::to_string(band.target_frequency) +
+          " Hz)^2: it is not positive semi-definite (check the materials, "
+          "springs and interface stiffness)");
+      FullSolveReport r;
+      r.symmetric_in_band  = counts[2] - counts[1];
+      r.symmetric_in_basis = counts[3];
+
+      const double   t_count = seconds_since(start);
+      SymmetricModes symmetric(K_s, M, sigma, band.tolerance);
+      const auto     modes = symmetric.solve(M, r.symmetric_in_basis, top);
+      if (modes.size() != r.symmetric_in_basis)
+        throw std::runtime_error(
+          "full solver: the symmetric eigensolver returned " +
+          std::to_string(modes.size()) + " modes below " +
+          std::to_string(band.basis_factor * band.f_max) +
+          " Hz where the inertia count gives " +
+          std::to_string(r.symmetric_in_basis));
+      const double t_symmetric = seconds_since(start);
+
+      const IndexSet  owned = M.locally_owned_range_indices();
+      const int       n     = owned.n_elements();
+      Eigen::MatrixXd Phi(n, modes.size());
+      Eigen::VectorXd omega2(modes.size());
+      for (unsigned int j = 0; j < modes.size(); ++j)
+        {
+          Phi.col(j) = internal::local_part(modes[j].re, owned);
+          omega2[j]  = modes[j].omega2.real();
+        }
+      Subspace s{M, C, K, M.get_mpi_communicator(), {}, {}, {}, {}, {}, {}, {}};
+      s.Mr.resize(0, 0);
+      s.Cr.resize(0, 0);
+      s.Kr.resize(0, 0);
+      s.append(Phi);
+      // static corrections of the damping and the friction forces
+      // (K - K_s) Phi = K Phi - M Phi Omega^2 (V = Phi to the eigensolver's
+      // tolerance: enough for a direction of the subspace)
+      {
+        const int       m = s.V.cols();
+        Eigen::MatrixXd forces(n, 2 * m);
+        forces << s.WC, s.WK - s.WM * omega2.asDiagonal();
+        s.append(internal::solve_block(symmetric.solver(), K_s, forces));
+      }
+      const double t_projection = seconds_since(start) - t_symmetric;
+
+      std::vector<internal::ProjectedPair> pairs;
+      std::vector<double>                  res;
+      for (r.rounds = 0;; ++r.rounds)
+        {
+          pairs = internal::projected_eigenpairs(
+            s.Mr, s.Cr, s.Kr, band.f_min, band.f_max, -w_t);
+          Eigen::MatrixXd corrections;
+          res = residuals(s, pairs, band.residual_tolerance, corrections);
+          if (corrections.cols() == 0 || r.rounds == band.max_rounds)
+            break;
+          s.append(internal::solve_block(symmetric.solver(), K_s, corrections));
+        }
+      r.basis_size = s.V.cols();
+      std::vector<EigenPair> result;
+      for (unsigned int j = 0; j < pairs.size(); ++j)
+        {
+          EigenPair p;
+          p.lambda   = pairs[j].lambda;
+          p.residual = res[j];
+          p.re.reinit(owned, s.comm);
+          p.im.reinit(owned, s.comm);
+          const Eigen::VectorXd xr = s.V * pairs[j].q.real(),
+                                xi = s.V * pairs[j].q.imag();
+          for (int k = 0; k < n; ++k)
+            {
+              p.re(owned.nth_index_in_set(k)) = xr[k];
+              p.im(owned.nth_index_in_set(k)) = xi[k];
+            }
+          p.re.compress(VectorOperation::insert);
+          p.im.compress(VectorOperation::insert);
+          r.largest_residual = std::max(r.largest_residual, p.residual);
+          if (p.residual > band.residual_tolerance)
+            ++r.above_tolerance;
+          result.push_back(std::move(p));
+        }
+      r.seconds = seconds_since(start);
+      pcout << "  full solver: " << result.size()
+            << " modes in the band; symmetric problem (no friction) "
+            << r.symmetric_in_band << " in the band and "
+            << r.symmetric_in_basis << " up to "
+            << band.basis_factor * band.f_max
+            << " Hz by Sylvester inertia, all in the basis; " << r.basis_size
+            << " basis vectors, largest relative residual "
+            << r.largest_residual << " after " << r.rounds << " rounds ("
+            << r.above_tolerance << " above " << band.residual_tolerance
+            << "); " << t_count << " s count, " << t_symmetric - t_count
+            << " s symmetric modes, " << t_projection << " s projection, "
+            << r.seconds - t_symmetric - t_projection << " s refinement"
+            << std::endl;
+      if (report)
+        *report = r;
+      return result;
+    }
+  } // namespace eigen
+} // namespace squeal
