@@ -152,10 +152,9 @@ namespace squeal
     void
     ComplexEigenvalueAnalysis::solve_sweep()
     {
-      const auto        &es = prm.eigensolver;
-      eigen::BandOptions band{
-        es.f_min, es.f_max, es.target_frequency, es.tolerance, 40};
-      const bool reduced_method = es.method == "reduced";
+      const auto        &es             = prm.eigensolver;
+      eigen::BandOptions band           = band_options();
+      const bool         reduced_method = es.method == "reduced";
       if (reduced_method)
         {
           TimerOutput::Scope t(timer, "reduced basis");
@@ -250,10 +249,9 @@ namespace squeal
                     << std::endl;
             }
           else
-            p.full = eigen::solve_full(model->parts(), values, band, pcout);
-          // 1.5 f_max holds about 1.7 times the modes of the band
-          band.initial_nev =
-            std::max<unsigned int>(40, 1.9 * p.full.size() + 10);
+            p.full =
+              eigen::solve_full(model->parts(), values, band, pcout, &p.report);
+          check_residuals(points.size(), p.full);
           for (const auto &r : p.full)
             {
               p.lambda.push_back(r.lambda);
@@ -264,6 +262,35 @@ namespace squeal
         }
     }
 
+    eigen::BandOptions
+    ComplexEigenvalueAnalysis::band_options(
+      const unsigned int initial_nev) const
+    {
+      const auto        &es = prm.eigensolver;
+      eigen::BandOptions band{
+        es.f_min, es.f_max, es.target_frequency, es.tolerance, initial_nev};
+      band.residual_tolerance = es.residual_tolerance;
+      return band;
+    }
+
+    void
+    ComplexEigenvalueAnalysis::check_residuals(
+      const unsigned int                   p,
+      const std::vector<eigen::EigenPair> &pairs)
+    {
+      for (const auto &pair : pairs)
+        if (!(pair.residual <= prm.eigensolver.residual_tolerance))
+          {
+            std::ostringstream what;
+            what << "point " << p << ": full solver eigenpair at "
+                 << pair.lambda.imag() / (2 * M_PI) << " Hz, Re lambda "
+                 << pair.lambda.real() << " 1/s, relative residual "
+                 << pair.residual << " above Eigensolver/Residual tolerance "
+                 << prm.eigensolver.residual_tolerance;
+            unverified.push_back(what.str());
+          }
+    }
+
     void
     ComplexEigenvalueAnalysis::check_against_full()
     {
@@ -271,10 +298,16 @@ namespace squeal
       if (es.method != "reduced" || es.n_check_points == 0 || points.empty())
         return;
       TimerOutput::Scope t(timer, "check against full");
-      // The most unstable point, then evenly spaced ones.
+      // The most unstable point, then the first and last unstable point of
+      // every unstable region's track.
       std::vector<unsigned int> chosen;
-      unsigned int              worst  = 0;
-      double                    max_re = -1e300;
+      const auto                choose = [&](const unsigned int p) {
+        if (chosen.size() < es.n_check_points &&
+            std::find(chosen.begin(), chosen.end(), p) == chosen.end())
+          chosen.push_back(p);
+      };
+      unsigned int worst  = 0;
+      double       max_re = -1e300;
       for (unsigned int p = 0; p < points.size(); ++p)
         for (const auto &l : points[p].lambda)
           if (l.real() > max_re)
@@ -282,80 +315,110 @@ namespace squeal
               max_re = l.real();
               worst  = p;
             }
-      chosen.push_back(worst);
-      for (unsigned int k = 0;
-           chosen.size() <
-           std::min<std::size_t>(es.n_check_points, points.size());
-           ++k)
+      choose(worst);
+      for (const auto &r : regions)
         {
-          const unsigned int p =
-            (k * (points.size() - 1)) / std::max(1u, es.n_check_points - 1);
-          if (std::find(chosen.begin(), chosen.end(), p) == chosen.end())
-            chosen.push_back(p);
-          if (k > points.size())
-            break;
+          choose(r.first_point);
+          choose(r.last_point);
         }
       pcout << "Checking the reduced solver against the full solver at "
-            << chosen.size() << " points" << std::endl;
-      // about as many modes up to 1.5 f_max as each basis sample had
-      eigen::BandOptions band{
-        es.f_min,
-        es.f_max,
-        es.target_frequency,
-        es.tolerance,
-        std::max(40u, 5 * reduced.sample_mode_count() / 4 + 10)};
-      double       max_df = 0, max_dre = 0;
-      unsigned int missed = 0;
+            << chosen.size()
+            << " points (the most unstable and the edges of every unstable "
+               "region)"
+            << std::endl;
+      const double tol      = es.unstable_tolerance;
+      const auto   unstable = [&](const std::complex<double> l) {
+        return l.real() > tol;
+      };
+      double max_error = 0;
       for (const unsigned int p : chosen)
         {
           const bool reuse = p == 0 && !first_point_full.empty();
           if (reuse)
             pcout << "  point 0: the last adaptive cycle's full solve, reused"
                   << std::endl;
-          const auto full =
-            reuse ?
-              first_point_full :
-              eigen::solve_full(model->parts(), points[p].values, band, pcout);
-          // Every full eigenvalue must have a reduced counterpart.
-          for (const auto &f : full)
+          const auto full = reuse ? first_point_full :
+                                    eigen::solve_full(model->parts(),
+                                                      points[p].values,
+                                                      band_options(),
+                                                      pcout);
+          check_residuals(p, full);
+          // one-to-one matching by relative eigenvalue distance
+          const auto     &reduced_lambda = points[p].lambda;
+          Eigen::MatrixXd cost(full.size(), reduced_lambda.size());
+          for (unsigned int i = 0; i < full.size(); ++i)
+            for (unsigned int j = 0; j < reduced_lambda.size(); ++j)
+              cost(i, j) = std::abs(reduced_lambda[j] - full[i].lambda) /
+                           std::abs(full[i].lambda);
+          const auto match = eigen::optimal_assignment(cost);
+          // a mode may cross a band edge between the two solvers
+          const auto at_edge = [&](const std::complex<double> l) {
+            const double f = l.imag() / (2 * M_PI);
+            return f < es.f_min * (1 + es.check_tolerance) ||
+                   f > es.f_max * (1 - es.check_tolerance);
+          };
+          std::vector<bool>  matched(reduced_lambda.size(), false);
+          unsigned int       n_unstable_full = 0, n_unstable_reduced = 0;
+          std::ostringstream failures;
+          for (unsigned int i = 0; i < full.size(); ++i)
             {
-              double               best = 1e300;
-              std::complex<double> match;
-              for (const auto &r : points[p].lambda)
-                if (std::abs(r - f.lambda) < best)
-                  {
-                    best  = std::abs(r - f.lambda);
-                    match = r;
-                  }
-              const double df =
-                std::abs(match.imag() - f.lambda.imag()) / f.lambda.imag();
-              const double dre = std::abs(match.real() - f.lambda.real()) /
-                                 (std::abs(f.lambda.real()) + 1.);
-              if (df > 1e-2)
-                ++missed;
-              max_df  = std::max(max_df, df);
-              max_dre = std::max(max_dre, dre);
+              const std::complex<double> f = full[i].lambda;
+              n_unstable_full += unstable(f);
               std::ostringstream row;
               row << std::setprecision(12) << p << ','
                   << points[p].values.get(prm.sweep.first.parameter) << ','
                   << points[p].values.get(prm.sweep.second.parameter) << ','
-                  << f.lambda.real() << ',' << f.lambda.imag() / (2 * M_PI)
-                  << ',' << match.real() << ',' << match.imag() / (2 * M_PI)
-                  << ',' << df << ',' << dre;
+                  << f.real() << ',' << f.imag() / (2 * M_PI) << ',';
+              if (match[i] < 0)
+                {
+                  row << ",,,,";
+                  if (!at_edge(f))
+                    failures << "; full mode at " << f.imag() / (2 * M_PI)
+                             << " Hz has no reduced one";
+                }
+              else
+                {
+                  matched[match[i]]            = true;
+                  const std::complex<double> r = reduced_lambda[match[i]];
+                  const double               e = cost(i, match[i]);
+                  max_error                    = std::max(max_error, e);
+                  row << r.real() << ',' << r.imag() / (2 * M_PI) << ','
+                      << std::abs(r.imag() - f.imag()) / f.imag() << ','
+                      << std::abs(r.real() - f.real()) /
+                           (std::abs(f.real()) + 1.)
+                      << ',' << e;
+                  if (e > es.check_tolerance)
+                    failures << "; full mode at " << f.imag() / (2 * M_PI)
+                             << " Hz (Re " << f.real()
+                             << " 1/s) matched to reduced "
+                             << r.imag() / (2 * M_PI) << " Hz (Re " << r.real()
+                             << " 1/s), relative error " << e;
+                }
               check_rows.push_back(row.str());
             }
-          if (full.size() != points[p].lambda.size())
-            pcout << "  point " << p << ": full solver " << full.size()
-                  << " modes in the band, reduced " << points[p].lambda.size()
-                  << " (modes at the band edges may differ)" << std::endl;
+          for (unsigned int j = 0; j < reduced_lambda.size(); ++j)
+            {
+              n_unstable_reduced += unstable(reduced_lambda[j]);
+              if (!matched[j] && !at_edge(reduced_lambda[j]))
+                failures << "; reduced mode at "
+                         << reduced_lambda[j].imag() / (2 * M_PI)
+                         << " Hz has no full one";
+            }
+          if (n_unstable_full != n_unstable_reduced)
+            failures << "; " << n_unstable_full << " unstable modes (full), "
+                     << n_unstable_reduced << " (reduced)";
+          pcout << "  point " << p << " (" << describe(points[p].values)
+                << "): " << full.size() << " modes (full), "
+                << reduced_lambda.size() << " (reduced), " << n_unstable_full
+                << " unstable (full), " << n_unstable_reduced << " (reduced)"
+                << std::endl;
+          if (!failures.str().empty())
+            unverified.push_back(
+              "point " + std::to_string(p) + " (" + describe(points[p].values) +
+              "), reduced against full solver" + failures.str());
         }
-      pcout << "Reduced against full: largest frequency error " << 100 * max_df
-            << " %, largest growth-rate error " << 100 * max_dre
-            << " % of |Re| + 1 1/s";
-      if (missed > 0)
-        pcout << "; WARNING: " << missed
-              << " full eigenvalues without a reduced one within 1 %";
-      pcout << std::endl;
+      pcout << "Reduced against full: largest relative eigenvalue error "
+            << max_error << " of the one-to-one matched pairs" << std::endl;
     }
 
     void
@@ -465,8 +528,26 @@ namespace squeal
           " sweep points: the model's modes lie outside it; check "
           "Eigensolver/Minimum and Maximum frequency against the materials "
           "and the mesh");
-      check_against_full();
       classify();
+      check_against_full();
+      if (!unverified.empty())
+        {
+          // one clear error: the first three failures and their count
+          std::ostringstream message;
+          message << unverified.size() << " verification failure(s):";
+          for (unsigned int k = 0; k < unverified.size() && k < 3; ++k)
+            message << "\n  " << unverified[k];
+          if (unverified.size() > 3)
+            message << "\n  ... (" << unverified.size() - 3 << " more)";
+          if (!prm.eigensolver.allow_unverified)
+            throw std::runtime_error(
+              message.str() +
+              "\nNo results published; Eigensolver/Allow unverified results "
+              "= true writes them into " +
+              io::normalised(prm.output.directory) + ".unverified");
+          pcout << "WARNING: " << message.str() << "\nResults go to "
+                << output_target() << std::endl;
+        }
       output_results();
       timer.print_summary();
     }

@@ -685,9 +685,8 @@ namespace squeal
       if (m.adaptive_cycles == 0 && !by_tolerance)
         return;
       TimerOutput::Scope t(timer, "adaptive refinement");
-      const auto        &es = prm.eigensolver;
-      eigen::BandOptions band{
-        es.f_min, es.f_max, es.target_frequency, es.tolerance, 40};
+      const auto        &es   = prm.eigensolver;
+      eigen::BandOptions band = band_options();
       // the richer models solve a wider band, so that a partner that moved
       // across a band edge is still found
       eigen::BandOptions wide = band;

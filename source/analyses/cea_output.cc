@@ -108,13 +108,39 @@ namespace squeal
             reg << r.second << ',' << r.first_min << ',' << r.first_max << ','
                 << r.f_min << ',' << r.f_max << ',' << r.max_re << ','
                 << r.track << '\n';
+          if (!unverified.empty())
+            {
+              std::ofstream note(work_dir + "/UNVERIFIED.txt");
+              note << "These results failed verification "
+                      "(Eigensolver/Allow unverified results = true):\n";
+              for (const auto &u : unverified)
+                note << u << '\n';
+            }
+          if (std::any_of(points.begin(), points.end(), [](const Point &p) {
+                return p.report.symmetric_in_basis > 0;
+              }))
+            {
+              // the full solver's counts and convergence at every point
+              std::ofstream fs(work_dir + "/full_solver.csv");
+              fs << "point,modes,symmetric_in_band,symmetric_in_basis,"
+                    "basis_size,rounds,largest_residual,seconds\n"
+                 << std::setprecision(6);
+              for (unsigned int p = 0; p < points.size(); ++p)
+                {
+                  const auto &r = points[p].report;
+                  fs << p << ',' << points[p].full.size() << ','
+                     << r.symmetric_in_band << ',' << r.symmetric_in_basis
+                     << ',' << r.basis_size << ',' << r.rounds << ','
+                     << r.largest_residual << ',' << r.seconds << '\n';
+                }
+            }
           if (!check_rows.empty())
             {
               std::ofstream chk(work_dir + "/check_full.csv");
               chk << "point," << first.column() << ',' << second.column()
                   << ",full_re_per_s,full_freq_Hz,"
                      "reduced_re_per_s,reduced_freq_Hz,freq_rel_error,"
-                     "re_error_per_abs_re_plus_1\n";
+                     "re_error_per_abs_re_plus_1,lambda_rel_error\n";
               for (const auto &r : check_rows)
                 chk << r << '\n';
             }
@@ -210,10 +236,17 @@ namespace squeal
         }
       MPI_Barrier(comm);
       if (root)
-        io::publish_directory(work_dir, prm.output.directory);
+        io::publish_directory(work_dir, output_target());
       MPI_Barrier(comm);
-      pcout << "Results written to " << prm.output.directory << "/"
-            << std::endl;
+      pcout << "Results written to " << output_target() << "/" << std::endl;
+    }
+
+    std::string
+    ComplexEigenvalueAnalysis::output_target() const
+    {
+      return unverified.empty() ?
+               prm.output.directory :
+               io::normalised(prm.output.directory) + ".unverified";
     }
 
   } // namespace analyses

@@ -50,6 +50,85 @@ namespace squeal
       return tracks;
     }
 
+    std::vector<int>
+    optimal_assignment(const Eigen::MatrixXd &cost, const double reject)
+    {
+      const int m = cost.rows(), n = cost.cols(), k = std::max(m, n);
+      if (m == 0 || n == 0)
+        return std::vector<int>(m, -1);
+      // square, padded: a forbidden or dummy entry costs more than any
+      // assignment of real, allowed pairs
+      double largest = 0.;
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < n; ++j)
+          if (cost(i, j) <= reject)
+            largest = std::max(largest, std::abs(cost(i, j)));
+      const double    big = 2. * (largest + 1.) * (k + 1);
+      Eigen::MatrixXd a   = Eigen::MatrixXd::Constant(k, k, big);
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < n; ++j)
+          if (cost(i, j) <= reject)
+            a(i, j) = cost(i, j);
+      // shortest augmenting paths with row potentials u and column
+      // potentials v (1-based, column 0 the virtual start)
+      std::vector<double> u(k + 1, 0.), v(k + 1, 0.);
+      std::vector<int>    row_of(k + 1, 0), way(k + 1, 0);
+      for (int i = 1; i <= k; ++i)
+        {
+          row_of[0]              = i;
+          int                 j0 = 0;
+          std::vector<double> slack(k + 1, 1e308);
+          std::vector<bool>   done(k + 1, false);
+          do
+            {
+              done[j0]        = true;
+              const int i0    = row_of[j0];
+              double    delta = 1e308;
+              int       j1    = 0;
+              for (int j = 1; j <= k; ++j)
+                if (!done[j])
+                  {
+                    const double c = a(i0 - 1, j - 1) - u[i0] - v[j];
+                    if (c < slack[j])
+                      {
+                        slack[j] = c;
+                        way[j]   = j0;
+                      }
+                    if (slack[j] < delta)
+                      {
+                        delta = slack[j];
+                        j1    = j;
+                      }
+                  }
+              for (int j = 0; j <= k; ++j)
+                if (done[j])
+                  {
+                    u[row_of[j]] += delta;
+                    v[j] -= delta;
+                  }
+                else
+                  slack[j] -= delta;
+              j0 = j1;
+            }
+          while (row_of[j0] != 0);
+          do
+            {
+              const int j1 = way[j0];
+              row_of[j0]   = row_of[j1];
+              j0           = j1;
+            }
+          while (j0 != 0);
+        }
+      std::vector<int> column(m, -1);
+      for (int j = 1; j <= k; ++j)
+        {
+          const int i = row_of[j] - 1;
+          if (i < m && j - 1 < n && cost(i, j - 1) <= reject)
+            column[i] = j - 1;
+        }
+      return column;
+    }
+
     std::vector<UnstableRegion>
     find_unstable_regions(
       const double                                          second,
@@ -92,12 +171,15 @@ namespace squeal
                                                l.real(),
                                                t,
                                                -1,
+                                               point_index[p],
+                                               point_index[p],
                                                point_index[p]})
                        .first;
-              auto &r     = it->second;
-              r.first_max = first[p];
-              r.f_min     = std::min(r.f_min, f);
-              r.f_max     = std::max(r.f_max, f);
+              auto &r      = it->second;
+              r.first_max  = first[p];
+              r.last_point = point_index[p];
+              r.f_min      = std::min(r.f_min, f);
+              r.f_max      = std::max(r.f_max, f);
               if (l.real() > r.max_re)
                 {
                   r.max_re       = l.real();

@@ -325,11 +325,37 @@ namespace squeal
                         "l = 1..depth (with the interface response K^-1 K_n "
                         "Phi always added). 1 holds growth rates to 0.1 % up "
                         "to mu = 2 in the hard-case tests; 2 gains little.");
-      prm.declare_entry("Check points",
-                        std::to_string(n_check_points),
-                        Patterns::Integer(0, 100),
-                        "Sweep points at which the reduced solver is checked "
-                        "against the full solver.");
+      prm.declare_entry(
+        "Check points",
+        std::to_string(n_check_points),
+        Patterns::Integer(0, 10000),
+        "The most sweep points at which the reduced solver is checked "
+        "against the full solver: the most unstable point, then the first "
+        "and last unstable point of every unstable region's track. A check "
+        "fails when the mode counts or the numbers of unstable modes "
+        "differ, or a matched pair differs by more than the check "
+        "tolerance; 0 checks nothing.");
+      prm.declare_entry("Residual tolerance",
+                        str(residual_tolerance),
+                        Patterns::Double(1e-14, 1e-2),
+                        "Largest relative residual ||(lambda^2 M + lambda C "
+                        "+ K) x|| / (|lambda|^2 ||M x|| + |lambda| ||C x|| + "
+                        "||K x||) of a full-solver eigenpair; a pair above "
+                        "it fails the run.");
+      prm.declare_entry("Check tolerance",
+                        str(check_tolerance),
+                        Patterns::Double(1e-12, 1.),
+                        "Largest |lambda_reduced - lambda_full| / "
+                        "|lambda_full| of a one-to-one matched pair at a "
+                        "check point.");
+      prm.declare_entry("Allow unverified results",
+                        "false",
+                        Patterns::Bool(),
+                        "When a residual or a check against the full solver "
+                        "fails: false stops the run with the failures "
+                        "listed; true writes the results into "
+                        "DIRECTORY.unverified with the failures in "
+                        "UNVERIFIED.txt.");
       prm.leave_subsection();
     }
 
@@ -348,6 +374,9 @@ namespace squeal
       reduced_enrichment       = prm.get_bool("Reduced enrichment");
       reduced_enrichment_depth = prm.get_integer("Reduced enrichment depth");
       n_check_points           = prm.get_integer("Check points");
+      residual_tolerance       = prm.get_double("Residual tolerance");
+      check_tolerance          = prm.get_double("Check tolerance");
+      allow_unverified         = prm.get_bool("Allow unverified results");
       prm.leave_subsection();
       check(target_frequency > 0.,
             "Eigensolver/Target frequency = " + str(target_frequency) +

@@ -181,11 +181,29 @@ namespace squeal
         std::vector<double>               residual;
         std::vector<Eigen::VectorXcd>     q;    ///< reduced coordinates
         std::vector<eigen::EigenPair>     full; ///< full-solver pairs
+        /// the full solver's counts and residuals (full method only)
+        eigen::FullSolveReport report;
       };
       std::vector<Point>                 points;
       std::vector<ModeRecord>            modes;
       std::vector<eigen::UnstableRegion> regions;
       std::vector<std::string>           check_rows;
+      /// Failed residuals and checks: the run stops with them, or writes
+      /// DIRECTORY.unverified (Eigensolver/Allow unverified results).
+      std::vector<std::string> unverified;
+
+      /// The band, tolerances and first guess of the eigensolvers.
+      eigen::BandOptions
+      band_options(const unsigned int initial_nev = 40) const;
+      /// Adds a failure for every pair of @p pairs at sweep point @p p
+      /// whose residual exceeds Eigensolver/Residual tolerance.
+      void
+      check_residuals(const unsigned int                   p,
+                      const std::vector<eigen::EigenPair> &pairs);
+      /// The folder the results are published to: Output/Directory, or
+      /// with `.unverified` appended when a check failed.
+      std::string
+      output_target() const;
     };
   } // namespace analyses
 } // namespace squeal

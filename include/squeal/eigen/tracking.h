@@ -47,9 +47,23 @@ namespace squeal
       double f_min, f_max;         ///< Hz
       double max_re;               ///< 1/s
       int    track;
-      int    partner_track = -1; ///< the locking-in partner, -1 if none
-      unsigned int point_of_max; ///< sweep point index of max_re
+      int    partner_track = -1;    ///< the locking-in partner, -1 if none
+      unsigned int point_of_max;    ///< sweep point index of max_re
+      unsigned int first_point = 0; ///< sweep point index of its first point
+      unsigned int last_point  = 0; ///< sweep point index of its last point
     };
+
+    /**
+     * The one-to-one assignment of rows to columns of an m x n @p cost
+     * matrix (any sign, finite) that minimises the total cost over
+     * min(m, n) pairs (the Hungarian method with potentials, O(k^3),
+     * k = max(m, n)). Entries above @p reject count as forbidden: a row
+     * whose best feasible assignment needs one is left unassigned.
+     * @return the column of every row, -1 for an unassigned row
+     */
+    std::vector<int>
+    optimal_assignment(const Eigen::MatrixXd &cost,
+                       const double           reject = 1e300);
 
     /**
      * Unstable regions of one sweep of the first parameter at a fixed value

@@ -250,8 +250,19 @@ namespace squeal
       bool   reduced_enrichment =
         true; ///< enrich the reduced basis at the sweep points
       unsigned int reduced_enrichment_depth = 1; ///< levels (K^-1 K_t)^l Phi
-      unsigned int n_check_points =
-        2; ///< points where the reduced solver is checked against the full one
+      /// the most points at which the reduced solver is checked against
+      /// the full one (the most unstable point and the edges of every
+      /// unstable region; 0: no check)
+      unsigned int n_check_points = 100;
+      /// largest relative residual of a full-solver eigenpair on the full
+      /// damped model
+      double residual_tolerance = 1e-10;
+      /// largest |lambda_reduced - lambda_full| / |lambda_full| of a
+      /// matched pair at a check point
+      double check_tolerance = 1e-4;
+      /// write results that failed a check into DIRECTORY.unverified
+      /// instead of stopping the run
+      bool allow_unverified = false;
       /** Declares the subsection's entries: defaults, ranges, help (SI units).
        */
       void
