@@ -1,8 +1,7 @@
-// SLEPc-based sparse eigensolvers: the quadratic eigenproblem of the complex
-// eigenvalue analysis (PEP/TOAR) and the symmetric generalised problem whose
-// real modes build the reduced basis (EPS/Krylov-Schur). Both use one real
-// shift and enlarge the number of requested eigenvalues until the band is
-// covered; see the header for why this cannot miss a mode.
+// SLEPc-based sparse eigensolvers: the generalised problem whose real modes
+// build the reduced basis (EPS/Krylov-Schur with one real shift, asking for
+// more eigenvalues until the band is covered) and a kept MUMPS LU
+// factorisation.
 
 #include <deal.II/base/exceptions.h>
 

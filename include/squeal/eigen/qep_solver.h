@@ -5,22 +5,14 @@
  * @file
  * Sparse eigensolvers on SLEPc, for PETSc built with real scalars.
  *
- * Strategy for reaching the whole band in real arithmetic ("real shifts in
- * omega^2 on the friction-coupled problem"): the undamped problem
- * (K + K_f) phi = omega^2 M phi is solved with one real shift
- * sigma = -(2 pi f_t)^2 (f_t small, default 100 Hz) and shift-and-invert
- * (MUMPS LU of K - sigma M). Its eigenvalues omega^2 are real for every
- * mode that is not locked in, and a complex-conjugate pair where two modes
- * have coalesced; the n nearest to sigma are exactly the n lowest modes, and
- * the solver asks for more until the farthest converged one lies beyond
- * (1.1 f_max)^2, so no mode of the band can be missed. Doublets are double
- * real eigenvalues, which Krylov-Schur locks without trouble (the complex
- * Schur-block swaps of a quadratic Krylov solver in real arithmetic fail on
- * exact doublets: LAPACK trexc, seen with SLEPc TOAR). The damped quadratic
- * problem is then solved exactly on the span of these eigenvectors (see
- * reduced_model.h, solve_full); the residual of every eigenpair on the full
- * model is reported. A negative shift keeps K - sigma M regular when K is
- * singular (a free rigid-body motion).
+ * solve_undamped() finds every mode of K phi = omega^2 M phi up to a
+ * frequency: one real shift sigma = -(2 pi f_t)^2 (f_t small, default
+ * 100 Hz) with shift-and-invert (MUMPS LU of K - sigma M), asking for more
+ * eigenvalues until the farthest converged one lies beyond the wanted
+ * frequency. The reduced basis (reduced_model.h) uses it on the symmetric
+ * problem. The full solver of the damped quadratic problem, with its
+ * inertia count, is in full_solver.h. A negative shift keeps K - sigma M
+ * regular when K is singular (a free rigid-body motion).
  */
 
 #include <deal.II/base/conditional_ostream.h>
