@@ -6,6 +6,9 @@
 //    GeneralizedSelfAdjointEigenSolver), at shifts between the eigenvalues.
 // 2. optimal_assignment (Hungarian) against every permutation of square and
 //    rectangular cost matrices, with and without a rejection threshold.
+// 3. track_modes on three points whose links a greedy choice gets wrong
+//    (the cheapest link first leaves a mode unlinked) and with a mode whose
+//    MAC to every predecessor is below the threshold (a new track).
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
@@ -163,6 +166,40 @@ namespace
                             1.);
         }
   }
+
+  void
+  check_tracking()
+  {
+    // point 0: A, B; point 1: a, b (same eigenvalues, so cost = 1 - MAC).
+    // Greedy takes A-a (cost 0.05), then B-b is rejected (MAC 0.2) and B
+    // is lost; the optimal links are A-b and B-a (0.1 + 0.1).
+    // point 2: c, d with MAC 0.9 to b and at most 0.25 to a: c continues
+    // b, d starts a new track.
+    const std::vector<std::vector<std::complex<double>>> lambdas = {
+      {{-1., 1e4}, {-1., 1e4}},
+      {{-1., 1e4}, {-1., 1e4}},
+      {{-1., 1e4}, {-1., 1e4}}};
+    Eigen::MatrixXd m1(2, 2), m2(2, 2);
+    m1 << 0.95, 0.9, 0.9, 0.2;
+    m2 << 0.25, 0.1, 0.9, 0.2;
+    int        next = 0;
+    const auto tracks =
+      eigen::track_modes(lambdas, {Eigen::MatrixXd(), m1, m2}, next);
+    test_tools::check("tracking: A continues as b",
+                      tracks[1][1],
+                      tracks[0][0],
+                      0);
+    test_tools::check("tracking: B continues as a",
+                      tracks[1][0],
+                      tracks[0][1],
+                      0);
+    test_tools::check("tracking: c continues b", tracks[2][0], tracks[1][1], 0);
+    test_tools::check("tracking: d (MAC 0.2 < 0.3) starts a track",
+                      tracks[2][1],
+                      2,
+                      0);
+    test_tools::check("tracking: three tracks", next, 3, 0);
+  }
 } // namespace
 
 int
@@ -171,5 +208,6 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   check_inertia();
   check_assignment();
+  check_tracking();
   return test_tools::n_failures == 0 ? 0 : 1;
 }

@@ -13,6 +13,7 @@
 #include <squeal/analyses/preload.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/mac.h>
+#include <squeal/io/matrix_export.h>
 #include <squeal/io/output_directory.h>
 
 #include <algorithm>
@@ -64,8 +65,19 @@ namespace squeal
       TimerOutput::Scope t(timer, "setup and assembly");
       // Refuse to replace earlier results; write into a temporary directory
       // that output_results() renames at the end.
+      const std::size_t n_points =
+        prm.sweep.first.values.size() * prm.sweep.second.values.size();
+      for (const unsigned int p : prm.output.export_points)
+        if (p >= n_points)
+          throw std::runtime_error(
+            "Output/Export matrices: sweep point " + std::to_string(p) +
+            " does not exist; the sweep has points 0 to " +
+            std::to_string(n_points - 1));
+      std::vector<std::string> folders{"modes"};
+      if (!prm.output.export_points.empty())
+        folders.push_back("matrices");
       work_dir = io::start_work_directory(
-        prm.output.directory, prm.output.overwrite, handler, comm, {"modes"});
+        prm.output.directory, prm.output.overwrite, handler, comm, folders);
       // the preload's nodal contact pressure at the pad nodes [Pa]
       std::vector<std::pair<dealii::Point<3>, double>> preload_pressure;
       if (prm.scene.analysis == "preloaded cea")
@@ -326,9 +338,10 @@ namespace squeal
             << " points (the most unstable and the edges of every unstable "
                "region)"
             << std::endl;
-      const double tol      = es.unstable_tolerance;
-      const auto   unstable = [&](const std::complex<double> l) {
-        return l.real() > tol;
+      const auto unstable = [&](const std::complex<double> l) {
+        return eigen::is_unstable(l,
+                                  es.unstable_tolerance,
+                                  es.unstable_relative_tolerance);
       };
       double max_error = 0;
       for (const unsigned int p : chosen)
@@ -422,10 +435,114 @@ namespace squeal
     }
 
     void
+    ComplexEigenvalueAnalysis::certify()
+    {
+      const auto &es = prm.eigensolver;
+      if (es.method != "reduced" || !es.certify || points.empty())
+        return;
+      TimerOutput::Scope t(timer, "certification");
+      const auto         start = std::chrono::steady_clock::now();
+      const auto         near  = [&](const std::complex<double> l) {
+        return l.real() + es.certification_margin >
+               std::max(es.unstable_tolerance,
+                        es.unstable_relative_tolerance * std::abs(l));
+      };
+      // the points with eigenvalues to certify, those that share the
+      // preconditioner's M and K_s next to each other
+      const auto parts = model->parts();
+      std::vector<std::pair<std::vector<double>, unsigned int>> order;
+      unsigned int                                              n_pairs = 0;
+      for (unsigned int p = 0; p < points.size(); ++p)
+        {
+          points[p].refined.assign(points[p].lambda.size(), false);
+          const unsigned int n = std::count_if(points[p].lambda.begin(),
+                                               points[p].lambda.end(),
+                                               near);
+          if (n == 0)
+            continue;
+          n_pairs += n;
+          const auto          c   = parts.coefficients(points[p].values);
+          std::vector<double> key = c.mass;
+          key.insert(key.end(),
+                     c.symmetric_stiffness.begin(),
+                     c.symmetric_stiffness.end());
+          order.emplace_back(key, p);
+        }
+      std::stable_sort(order.begin(),
+                       order.end(),
+                       [](const auto &a, const auto &b) {
+                         return a.first < b.first;
+                       });
+      pcout << "Certifying the stability map: " << n_pairs
+            << " eigenvalues within " << es.certification_margin
+            << " 1/s of the stability threshold at " << order.size()
+            << " points, refined on the full model to residual "
+            << es.residual_tolerance << std::endl;
+      eigen::PairRefiner refiner(parts, band_options());
+      double             largest = 0., largest_move = 0.;
+      unsigned int       rounds = 0;
+      for (const auto &[key, p] : order)
+        {
+          Point                            &pt = points[p];
+          std::vector<unsigned int>         index;
+          std::vector<std::complex<double>> lambda;
+          std::vector<Eigen::VectorXcd>     q;
+          for (unsigned int m = 0; m < pt.lambda.size(); ++m)
+            if (near(pt.lambda[m]))
+              {
+                index.push_back(m);
+                lambda.push_back(pt.lambda[m]);
+                q.push_back(pt.q[m]);
+              }
+          const auto refined =
+            refiner.refine(pt.values, reduced.projection(pt.values), lambda, q);
+          for (unsigned int a = 0; a < index.size(); ++a)
+            {
+              const unsigned int m = index[a];
+              const auto        &r = refined[a];
+              const double       moved =
+                std::abs(r.lambda - pt.lambda[m]) / std::abs(r.lambda);
+              std::ostringstream what;
+              what << "point " << p << " (" << describe(pt.values)
+                   << "): reduced eigenvalue at "
+                   << pt.lambda[m].imag() / (2 * M_PI) << " Hz, Re lambda "
+                   << pt.lambda[m].real() << " 1/s, ";
+              if (!(r.residual <= es.residual_tolerance))
+                unverified.push_back(
+                  what.str() + "refined on the full model to residual " +
+                  Utilities::to_string(r.residual) +
+                  " only, above Eigensolver/Residual tolerance " +
+                  Utilities::to_string(es.residual_tolerance));
+              else if (moved > es.check_tolerance)
+                unverified.push_back(
+                  what.str() + "moved by " + Utilities::to_string(moved) +
+                  " of |lambda| on the full model, more than "
+                  "Eigensolver/Check tolerance " +
+                  Utilities::to_string(es.check_tolerance));
+              largest        = std::max(largest, r.residual);
+              largest_move   = std::max(largest_move, moved);
+              rounds         = std::max(rounds, r.rounds);
+              pt.lambda[m]   = r.lambda;
+              pt.residual[m] = r.residual;
+              pt.refined[m]  = true;
+            }
+        }
+      pcout << "  certified: largest residual " << largest << " after at most "
+            << rounds << " rounds, largest change of a reduced eigenvalue "
+            << largest_move << " of |lambda|; " << refiner.factorisations()
+            << " factorisations, "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                             start)
+                 .count()
+            << " s" << std::endl;
+    }
+
+    void
     ComplexEigenvalueAnalysis::classify()
     {
       TimerOutput::Scope t(timer, "tracking and classification");
-      const double       tol     = prm.eigensolver.unstable_tolerance;
+      const auto        &es      = prm.eigensolver;
+      const double       tol     = es.unstable_tolerance;
       int                next_id = 0;
       unsigned int       first   = 0;
       while (first < points.size())
@@ -462,27 +579,36 @@ namespace squeal
                 }
               macs.push_back(mac);
             }
-          const auto tracks = eigen::track_modes(lambdas, macs, next_id);
+          const auto tracks = eigen::track_modes(
+            lambdas, macs, next_id, 10., es.tracking_mac_threshold);
           for (unsigned int p = first; p <= last; ++p)
             for (unsigned int m = 0; m < points[p].lambda.size(); ++m)
               {
                 const auto l = points[p].lambda[m];
-                modes.push_back({p,
-                                 points[p].values,
-                                 m,
-                                 l,
-                                 points[p].residual[m],
-                                 l.real() > tol,
-                                 tracks[p - first][m]});
+                modes.push_back(
+                  {p,
+                   points[p].values,
+                   m,
+                   l,
+                   points[p].residual[m],
+                   eigen::is_unstable(l, tol, es.unstable_relative_tolerance),
+                   tracks[p - first][m],
+                   !points[p].refined.empty() && points[p].refined[m]});
               }
-          const auto r = eigen::find_unstable_regions(
-            second(first), x, index, lambdas, tracks, tol);
+          const auto r =
+            eigen::find_unstable_regions(second(first),
+                                         x,
+                                         index,
+                                         lambdas,
+                                         tracks,
+                                         tol,
+                                         es.unstable_relative_tolerance);
           regions.insert(regions.end(), r.begin(), r.end());
           first = last + 1;
         }
 
-      pcout << "\nUnstable regions (Re lambda > " << tol
-            << " 1/s):" << std::endl;
+      pcout << "\nUnstable regions (Re lambda > " << tol << " 1/s and > "
+            << es.unstable_relative_tolerance << " |lambda|):" << std::endl;
       if (regions.empty())
         pcout << "  none: every eigenvalue in the band is stable" << std::endl;
       const auto first_info =
@@ -528,6 +654,7 @@ namespace squeal
           " sweep points: the model's modes lie outside it; check "
           "Eigensolver/Minimum and Maximum frequency against the materials "
           "and the mesh");
+      certify();
       classify();
       check_against_full();
       if (!unverified.empty())

@@ -81,7 +81,8 @@ namespace squeal
               << ",mode,re_per_s,freq_Hz,zeta,unstable,track\n"
               << std::setprecision(12);
           std::ofstream res(work_dir + "/eigenvalue_residuals.csv");
-          res << "point,mode,relative_residual\n" << std::setprecision(6);
+          res << "point,mode,relative_residual,refined\n"
+              << std::setprecision(6);
           for (const auto &m : modes)
             {
               csv << m.point << ',' << m.values.get(first.name) << ','
@@ -89,7 +90,8 @@ namespace squeal
                   << m.lambda.real() << ',' << m.lambda.imag() / (2 * M_PI)
                   << ',' << -m.lambda.real() / std::abs(m.lambda) << ','
                   << (m.unstable ? 1 : 0) << ',' << m.track << '\n';
-              res << m.point << ',' << m.mode << ',' << m.residual << '\n';
+              res << m.point << ',' << m.mode << ',' << m.residual << ','
+                  << (m.refined ? 1 : 0) << '\n';
             }
           std::ofstream axes(work_dir + "/sweep_axes.csv");
           axes << "axis,parameter,column,log\n";

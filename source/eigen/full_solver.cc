@@ -292,6 +292,36 @@ namespace squeal
           }
         return result;
       }
+
+      // The eigenpair of the dense (mu^2 M + mu C + K) y = 0 that nonlinear
+      // inverse iteration reaches from (mu, y) (Ruhe 1973, Sec. 3; see
+      // PairRefiner), in place; u = y / |y|^2 fixes the scale u^H y = 1.
+      void
+      follow_eigenpair(const Eigen::MatrixXd &M,
+                       const Eigen::MatrixXd &C,
+                       const Eigen::MatrixXd &K,
+                       std::complex<double>  &mu,
+                       Eigen::VectorXcd      &y)
+      {
+        using Complex             = std::complex<double>;
+        const Eigen::MatrixXcd Mc = M.cast<Complex>(), Cc = C.cast<Complex>(),
+                               Kc = K.cast<Complex>();
+        const Eigen::VectorXcd u  = y / y.squaredNorm();
+        for (unsigned int iteration = 0; iteration < 20; ++iteration)
+          {
+            const Eigen::MatrixXcd T = mu * mu * Mc + mu * Cc + Kc;
+            const Eigen::VectorXcd z =
+              T.partialPivLu().solve((2. * mu * Mc + Cc) * y);
+            const Complex uz = u.dot(z);
+            if (!std::isfinite(std::abs(uz)) || uz == 0.)
+              return;
+            const Complex step = 1. / uz;
+            mu -= step;
+            y = z / uz;
+            if (std::abs(step) <= 1e-14 * std::abs(mu))
+              return;
+          }
+      }
     } // namespace
 
     std::vector<unsigned int>
@@ -466,6 +496,88 @@ namespace squeal
             << std::endl;
       if (report)
         *report = r;
+      return result;
+    }
+
+    PairRefiner::PairRefiner(const physics::MatrixParts &model,
+                             const BandOptions          &band)
+      : model(model)
+      , band(band)
+    {}
+
+    PairRefiner::~PairRefiner() = default;
+
+    std::vector<RefinedPair>
+    PairRefiner::refine(const parameters::ScalarPoint           &point,
+                        const Projection                        &start,
+                        const std::vector<std::complex<double>> &lambda,
+                        const std::vector<Eigen::VectorXcd>     &q)
+    {
+      const auto          c = model.coefficients(point);
+      std::vector<double> k = c.mass;
+      k.insert(k.end(),
+               c.symmetric_stiffness.begin(),
+               c.symmetric_stiffness.end());
+      PETScMatrix M, C, K;
+      model.mass(point, M);
+      if (!solver || k != key)
+        {
+          // P = K_s + (2 pi f_t)^2 M: positive definite, one Cholesky
+          solver.reset();
+          model.symmetric_stiffness(point, P);
+          const double w_t = 2. * numbers::PI * band.target_frequency;
+          P.add(w_t * w_t, M);
+          solver = std::make_unique<DirectSolver>(P, true);
+          key    = k;
+          ++n_factorisations;
+        }
+      model.damping(point, C);
+      model.stiffness(point, K);
+      Subspace                             s{M,
+                 C,
+                 K,
+                 M.get_mpi_communicator(),
+                 start.V,
+                 start.MV,
+                 start.CV,
+                 start.KV,
+                 start.Mr,
+                 start.Cr,
+                 start.Kr};
+      const unsigned int                   n_pairs = lambda.size();
+      std::vector<internal::ProjectedPair> pairs(n_pairs);
+      for (unsigned int j = 0; j < n_pairs; ++j)
+        pairs[j] = {lambda[j], q[j]};
+      std::vector<RefinedPair> result(n_pairs, {0., 1., 0});
+      std::vector<bool>        done(n_pairs, false);
+      for (unsigned int round = 0;; ++round)
+        {
+          std::vector<internal::ProjectedPair> open;
+          std::vector<unsigned int>            index;
+          for (unsigned int j = 0; j < n_pairs; ++j)
+            if (!done[j])
+              {
+                // coordinates of the new directions start at zero
+                auto     &y   = pairs[j].q;
+                const int old = y.size();
+                y.conservativeResize(s.V.cols());
+                y.tail(y.size() - old).setZero();
+                follow_eigenpair(s.Mr, s.Cr, s.Kr, pairs[j].lambda, y);
+                open.push_back(pairs[j]);
+                index.push_back(j);
+              }
+          Eigen::MatrixXd corrections;
+          const auto      res =
+            residuals(s, open, band.residual_tolerance, corrections);
+          for (unsigned int a = 0; a < open.size(); ++a)
+            {
+              result[index[a]] = {open[a].lambda, res[a], round};
+              done[index[a]]   = res[a] <= band.residual_tolerance;
+            }
+          if (corrections.cols() == 0 || round == band.max_rounds)
+            break;
+          s.append(internal::solve_block(solver->handle(), P, corrections));
+        }
       return result;
     }
   } // namespace eigen

@@ -135,7 +135,7 @@ namespace squeal
         }
     }
 
-    DirectSolver::DirectSolver(const PETScMatrix &A)
+    DirectSolver::DirectSolver(const PETScMatrix &A, const bool symmetric)
     {
       KSP k;
       PC  pc;
@@ -143,7 +143,7 @@ namespace squeal
       check(KSPSetOperators(k, A, A), "KSPSetOperators");
       check(KSPSetType(k, KSPPREONLY), "KSPSetType");
       check(KSPGetPC(k, &pc), "KSPGetPC");
-      check(PCSetType(pc, PCLU), "PCSetType");
+      check(PCSetType(pc, symmetric ? PCCHOLESKY : PCLU), "PCSetType");
       check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS),
             "PCFactorSetMatSolverType");
       check(KSPSetUp(k), "KSPSetUp");

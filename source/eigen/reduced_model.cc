@@ -337,6 +337,32 @@ namespace squeal
       return pairs;
     }
 
+    Projection
+    ReducedModel::projection(const parameters::ScalarPoint &p) const
+    {
+      const auto         c       = parts.coefficients(p);
+      const unsigned int n_parts = active.size();
+      const auto combine = [&](const physics::MatrixParts::Coefficients &a,
+                               const std::vector<Eigen::MatrixXd>       &A,
+                               const int                                 rows) {
+        Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(rows, V.cols());
+        for (unsigned int k = 0; k < n_parts; ++k)
+          if (active[k] && a[k] != 0.)
+            sum += a[k] * A[k];
+        return sum;
+      };
+      const int  n = V.rows(), r = V.cols();
+      Projection result;
+      result.V  = V;
+      result.MV = combine(c.mass, W, n);
+      result.CV = combine(c.damping, W, n);
+      result.KV = combine(c.stiffness, W, n);
+      result.Mr = combine(c.mass, Ar, r);
+      result.Cr = combine(c.damping, Ar, r);
+      result.Kr = combine(c.stiffness, Ar, r);
+      return result;
+    }
+
     void
     ReducedModel::expand(const Eigen::VectorXcd &q,
                          physics::PETScVector   &re,

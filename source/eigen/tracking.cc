@@ -15,33 +15,33 @@ namespace squeal
     track_modes(const std::vector<std::vector<std::complex<double>>> &lambdas,
                 const std::vector<Eigen::MatrixXd>                   &macs,
                 int                                                  &next_id,
-                const double                                          weight)
+                const double                                          weight,
+                const double mac_threshold)
     {
+      const double                  reject = 1.5;
       std::vector<std::vector<int>> tracks(lambdas.size());
       for (unsigned int p = 0; p < lambdas.size(); ++p)
         {
           tracks[p].assign(lambdas[p].size(), -1);
           if (p > 0)
             {
-              std::vector<std::tuple<double, int, int>> candidates;
-              for (unsigned int i = 0; i < lambdas[p - 1].size(); ++i)
-                for (unsigned int j = 0; j < lambdas[p].size(); ++j)
+              // rows: the modes of point p, columns: those of point p - 1
+              Eigen::MatrixXd cost(lambdas[p].size(), lambdas[p - 1].size());
+              for (unsigned int j = 0; j < lambdas[p].size(); ++j)
+                for (unsigned int i = 0; i < lambdas[p - 1].size(); ++i)
                   {
                     const double jump =
                       std::abs(lambdas[p][j] - lambdas[p - 1][i]) /
                       std::abs(lambdas[p - 1][i]);
-                    const double cost = (1 - macs[p](i, j)) + weight * jump;
-                    if (cost < 1.5)
-                      candidates.emplace_back(cost, i, j);
+                    const double c = (1 - macs[p](i, j)) + weight * jump;
+                    cost(j, i) = macs[p](i, j) >= mac_threshold && c < reject ?
+                                   c :
+                                   2 * reject;
                   }
-              std::sort(candidates.begin(), candidates.end());
-              std::vector<bool> used_prev(lambdas[p - 1].size(), false);
-              for (const auto &[cost, i, j] : candidates)
-                if (!used_prev[i] && tracks[p][j] < 0)
-                  {
-                    used_prev[i] = true;
-                    tracks[p][j] = tracks[p - 1][i];
-                  }
+              const auto link = optimal_assignment(cost, reject);
+              for (unsigned int j = 0; j < lambdas[p].size(); ++j)
+                if (link[j] >= 0)
+                  tracks[p][j] = tracks[p - 1][link[j]];
             }
           for (auto &t : tracks[p])
             if (t < 0)
@@ -136,7 +136,8 @@ namespace squeal
       const std::vector<unsigned int>                      &point_index,
       const std::vector<std::vector<std::complex<double>>> &lambdas,
       const std::vector<std::vector<int>>                  &tracks,
-      const double                                          tolerance)
+      const double                                          tolerance,
+      const double                                          relative_tolerance)
     {
       std::vector<UnstableRegion>   regions;
       std::map<int, UnstableRegion> open; // by track
@@ -155,7 +156,7 @@ namespace squeal
             {
               const auto   l = lambdas[p][m];
               const double f = l.imag() / (2 * M_PI);
-              if (l.real() <= tolerance)
+              if (!is_unstable(l, tolerance, relative_tolerance))
                 continue;
               const int t = tracks[p][m];
               unstable_now.push_back(t);

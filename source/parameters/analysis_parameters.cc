@@ -269,13 +269,16 @@ namespace squeal
       prm.declare_entry("Method",
                         method,
                         Patterns::Selection("full|reduced"),
-                        "full: at every point, SLEPc Krylov-Schur on the "
-                        "undamped friction-coupled problem (real shift-and-"
-                        "invert, MUMPS), then the damped problem on that "
-                        "subspace, refined to relative residual 1e-8; "
-                        "reduced: modal "
-                        "basis with friction enrichment, dense LAPACK per "
-                        "point, checked against full at a few points.");
+                        "full: at every point, the symmetric modes counted "
+                        "by Sylvester inertia and found by SLEPc "
+                        "Krylov-Schur (MUMPS Cholesky), the damped "
+                        "friction-coupled problem projected on them and "
+                        "refined by Davidson to Residual tolerance; "
+                        "reduced: modal basis with friction enrichment, "
+                        "dense LAPACK per point, the (nearly) unstable "
+                        "eigenvalues certified on the full model, checked "
+                        "against full at the most unstable point and the "
+                        "edges of the unstable regions.");
       prm.declare_entry("Tolerance",
                         str(tolerance),
                         Patterns::Double(1e-15, 1e-3),
@@ -291,7 +294,45 @@ namespace squeal
                         Patterns::Double(0.,
                                          Patterns::Double::max_double_value),
                         "An eigenvalue is unstable when Re(lambda) exceeds "
-                        "this [1/s].");
+                        "this [1/s] and Unstable relative tolerance times "
+                        "|lambda|.");
+      prm.declare_entry("Unstable relative tolerance",
+                        str(unstable_relative_tolerance),
+                        Patterns::Double(0., 1.),
+                        "An eigenvalue is unstable when Re(lambda) / "
+                        "|lambda| (minus the damping ratio) exceeds this and "
+                        "Re(lambda) exceeds Unstable tolerance. The default "
+                        "1e-6 lies far above the error of a certified "
+                        "eigenvalue (residual 1e-10) and keeps undamped "
+                        "doublets, whose Re(lambda) is round-off, stable.");
+      prm.declare_entry("Certify stability map",
+                        certify ? "true" : "false",
+                        Patterns::Bool(),
+                        "Reduced method: refine every eigenvalue within "
+                        "Certification margin of the stability threshold on "
+                        "the full model until its residual is below "
+                        "Residual tolerance (Davidson from the reduced "
+                        "pair), so that the unstable regions are drawn from "
+                        "certified values; a pair that does not get there "
+                        "fails the run.");
+      prm.declare_entry("Certification margin",
+                        str(certification_margin),
+                        Patterns::Double(0.,
+                                         Patterns::Double::max_double_value),
+                        "Eigenvalues whose Re(lambda) lies above the "
+                        "stability threshold minus this [1/s] are "
+                        "certified (the reduced solver's error in "
+                        "Re(lambda) is below 0.2 1/s on the TriboBrake, "
+                        "benchmarks/cea_tribobrake).");
+      prm.declare_entry("Tracking MAC threshold",
+                        str(tracking_mac_threshold),
+                        Patterns::Double(0., 1.),
+                        "Modes of consecutive sweep points are linked into "
+                        "tracks by the one-to-one assignment of least total "
+                        "cost (1 - MAC) + 10 |lambda_a - lambda_b| / "
+                        "|lambda_a| (Hungarian method); a link needs a MAC "
+                        "of at least this, else the mode starts a new "
+                        "track.");
       prm.declare_entry("Reduced samples",
                         std::to_string(reduced_samples),
                         Patterns::Integer(1, 20),
@@ -363,12 +404,17 @@ namespace squeal
     Eigensolver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Eigensolver");
-      f_min                    = prm.get_double("Minimum frequency");
-      f_max                    = prm.get_double("Maximum frequency");
-      method                   = prm.get("Method");
-      tolerance                = prm.get_double("Tolerance");
-      target_frequency         = prm.get_double("Target frequency");
-      unstable_tolerance       = prm.get_double("Unstable tolerance");
+      f_min              = prm.get_double("Minimum frequency");
+      f_max              = prm.get_double("Maximum frequency");
+      method             = prm.get("Method");
+      tolerance          = prm.get_double("Tolerance");
+      target_frequency   = prm.get_double("Target frequency");
+      unstable_tolerance = prm.get_double("Unstable tolerance");
+      unstable_relative_tolerance =
+        prm.get_double("Unstable relative tolerance");
+      certify                  = prm.get_bool("Certify stability map");
+      certification_margin     = prm.get_double("Certification margin");
+      tracking_mac_threshold   = prm.get_double("Tracking MAC threshold");
       reduced_samples          = prm.get_integer("Reduced samples");
       reduced_band_factor      = prm.get_double("Reduced band factor");
       reduced_enrichment       = prm.get_bool("Reduced enrichment");

@@ -46,6 +46,15 @@ namespace squeal
                         "Which mode shapes go to modes.pvd: every unstable "
                         "mode at its largest growth rate and all modes of "
                         "the first point, all modes of every point, or none.");
+      prm.declare_entry("Export matrices",
+                        "",
+                        Patterns::List(Patterns::Integer(0), 0, 1000),
+                        "CEA: sweep point indices (from 0, in the order of "
+                        "eigenvalues.csv) whose M, C, K go to matrices/ in "
+                        "the MatrixMarket format, with every matrix part, "
+                        "the parts' coefficients (parts.csv) and the DoF "
+                        "coordinates (dofs.csv), for an independent solve; "
+                        "empty: none.");
       prm.leave_subsection();
     }
 
@@ -56,6 +65,10 @@ namespace squeal
       directory   = prm.get("Directory");
       overwrite   = prm.get_bool("Overwrite");
       mode_output = prm.get("Mode shapes");
+      export_points.clear();
+      for (const auto &item :
+           Utilities::split_string_list(prm.get("Export matrices")))
+        export_points.push_back(Utilities::string_to_int(item));
       prm.leave_subsection();
       check(!directory.empty(), "Output/Directory must not be empty");
     }

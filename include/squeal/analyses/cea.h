@@ -41,6 +41,7 @@ namespace squeal
       double                  residual; ///< relative, on the full model
       bool                    unstable; ///< Re lambda above the tolerance
       int                     track;    ///< mode track over the sweep
+      bool refined; ///< certified on the full model (reduced method)
     };
 
     /** The analysis; run() does everything. */
@@ -85,6 +86,11 @@ namespace squeal
       solve_sweep();
       void
       check_against_full();
+      /// Eigensolver/Certify stability map: refines every reduced
+      /// eigenvalue within the margin of the stability threshold on the
+      /// full model (eigen::PairRefiner); failures go to unverified
+      void
+      certify();
       void
       classify();
       void
@@ -179,8 +185,9 @@ namespace squeal
         parameters::ScalarPoint           values;
         std::vector<std::complex<double>> lambda;
         std::vector<double>               residual;
-        std::vector<Eigen::VectorXcd>     q;    ///< reduced coordinates
-        std::vector<eigen::EigenPair>     full; ///< full-solver pairs
+        std::vector<bool>             refined; ///< certified on the full model
+        std::vector<Eigen::VectorXcd> q;       ///< reduced coordinates
+        std::vector<eigen::EigenPair> full;    ///< full-solver pairs
         /// the full solver's counts and residuals (full method only)
         eigen::FullSolveReport report;
       };

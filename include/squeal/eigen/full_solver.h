@@ -40,9 +40,11 @@
 #include <deal.II/base/conditional_ostream.h>
 
 #include <squeal/eigen/qep_solver.h>
+#include <squeal/eigen/reduced_model.h>
 #include <squeal/parameters/parameters.h>
 #include <squeal/physics/structural_model.h>
 
+#include <memory>
 #include <vector>
 
 namespace squeal
@@ -94,6 +96,70 @@ namespace squeal
                const BandOptions             &band,
                dealii::ConditionalOStream    &pcout,
                FullSolveReport               *report = nullptr);
+
+    /** One eigenpair refined on the full model by PairRefiner. */
+    struct RefinedPair
+    {
+      std::complex<double> lambda;   ///< 1/s
+      double               residual; ///< relative, on the full model
+      unsigned int         rounds;   ///< Davidson rounds it took
+    };
+
+    /**
+     * Certifies approximate eigenpairs of a reduced sweep on the full model:
+     * each pair (lambda, V q) of the reduced basis V is refined until its
+     * relative residual on the full damped problem,
+     * ||(lambda^2 M + lambda C + K) x|| / (|lambda|^2 ||M x|| +
+     * |lambda| ||C x|| + ||K x||), is below BandOptions::residual_tolerance
+     * (or BandOptions::max_rounds are spent).
+     *
+     * Method (Davidson with a fixed preconditioner, as in solve_full()'s
+     * refinement): the subspace starts as V with the stored products of
+     * ReducedModel::projection(); every round adds P^-1 [Re r, Im r] for
+     * each pair's residual r, P = K_s(p) + (2 pi f_t)^2 M(p) (MUMPS
+     * Cholesky, factorised once for all points with the same M and K_s:
+     * a sweep of the friction coefficient shares it), and each pair
+     * follows its eigenvalue of the projected problem by nonlinear inverse
+     * iteration from its previous value (A. Ruhe, SIAM J. Numer. Anal. 10
+     * (1973) 674-689, Sec. 3: T(mu) z = T'(mu) y, mu <- mu - 1 / u^H z,
+     * y <- z / u^H z; quadratic convergence for a simple eigenvalue), so no
+     * dense eigenproblem of the whole subspace is solved. Collective on
+     * the model's communicator.
+     */
+    class PairRefiner
+    {
+    public:
+      /** @p model must outlive the refiner. */
+      PairRefiner(const physics::MatrixParts &model, const BandOptions &band);
+      ~PairRefiner();
+
+      /**
+       * Refines the pairs (@p lambda [1/s], @p q: coordinates in the basis
+       * of @p start, one per pair) at the point @p p.
+       * @return one RefinedPair per input pair, in their order
+       * @throws std::runtime_error if a factorisation fails.
+       */
+      std::vector<RefinedPair>
+      refine(const parameters::ScalarPoint           &p,
+             const Projection                        &start,
+             const std::vector<std::complex<double>> &lambda,
+             const std::vector<Eigen::VectorXcd>     &q);
+
+      /** Factorisations of P so far. */
+      unsigned int
+      factorisations() const
+      {
+        return n_factorisations;
+      }
+
+    private:
+      const physics::MatrixParts   &model;
+      BandOptions                   band;
+      std::vector<double>           key; ///< M and K_s coefficients of P
+      PETScMatrix                   P;
+      std::unique_ptr<DirectSolver> solver;
+      unsigned int                  n_factorisations = 0;
+    };
   } // namespace eigen
 } // namespace squeal
 

@@ -85,14 +85,17 @@ namespace squeal
                    dealii::ConditionalOStream &pcout);
 
     /**
-     * A sparse LU factorisation (MUMPS through PETSc) kept for repeated
-     * solves with one matrix.
+     * A sparse LU or Cholesky factorisation (MUMPS through PETSc) kept for
+     * repeated solves with one matrix.
      */
     class DirectSolver
     {
     public:
-      /** Factorises @p A (n x n). @throws std::runtime_error on failure. */
-      explicit DirectSolver(const PETScMatrix &A);
+      /**
+       * Factorises @p A (n x n): LU, or Cholesky when @p symmetric (A
+       * symmetric positive definite). @throws std::runtime_error on failure.
+       */
+      explicit DirectSolver(const PETScMatrix &A, const bool symmetric = false);
       ~DirectSolver();
       DirectSolver(const DirectSolver &) = delete;
       DirectSolver &
@@ -100,6 +103,12 @@ namespace squeal
       /** x = A^{-1} b; x must have A's row layout. */
       void
       solve(const PETScVector &b, PETScVector &x) const;
+      /** The factorised PETSc KSP (a KSP cast to void*), for block solves. */
+      void *
+      handle() const
+      {
+        return ksp;
+      }
 
     private:
       void *ksp;

@@ -48,6 +48,17 @@ namespace squeal
         residual; ///< relative residual on the full model (-1: not computed)
     };
 
+    /**
+     * The reduced basis at one parameter point: V (locally owned rows x r,
+     * M-orthonormal at the reference point), the products M(p) V, C(p) V,
+     * K(p) V (local rows) and the projected r x r matrices V^T M(p) V,
+     * V^T C(p) V, V^T K(p) V (every rank holds them whole).
+     */
+    struct Projection
+    {
+      Eigen::MatrixXd V, MV, CV, KV, Mr, Cr, Kr;
+    };
+
     /** The projected model of a StructuralModel. */
     class ReducedModel
     {
@@ -100,6 +111,14 @@ namespace squeal
       solve(const parameters::ScalarPoint &p,
             const double                   f_min,
             const double                   f_max) const;
+
+      /**
+       * The basis and its products at the point @p p (no sparse work: the
+       * stored products of every part are combined).
+       * @throws std::runtime_error if @p p lacks a parameter of the model.
+       */
+      Projection
+      projection(const parameters::ScalarPoint &p) const;
 
       /** The full-model vector V q, real and imaginary parts (length n). */
       void

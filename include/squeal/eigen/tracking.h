@@ -7,7 +7,9 @@
  * Near mode lock-in the two coalescing modes become parallel, so the complex
  * MAC alone cannot tell them apart; the matching cost therefore adds the
  * relative eigenvalue jump: cost = (1 - MAC) + w |lambda_a - lambda_b| /
- * |lambda_a|, assigned greedily from the cheapest pair.
+ * |lambda_a|, and the links between consecutive points are the one-to-one
+ * assignment of least total cost (the Hungarian method), a link allowed only
+ * when MAC >= a threshold and cost < 1.5.
  */
 
 #include <Eigen/Dense>
@@ -27,13 +29,30 @@ namespace squeal
      *   of point p (macs[0] unused), in [0, 1]
      * @param next_id first free track id; advanced past the ids used
      * @param weight w of the eigenvalue-jump term
+     * @param mac_threshold the least MAC of a link: a mode whose every
+     *   possible predecessor has a lower MAC (or a cost >= 1.5) starts a
+     *   new track
      * @return track id of every mode of every point
      */
     std::vector<std::vector<int>>
     track_modes(const std::vector<std::vector<std::complex<double>>> &lambdas,
                 const std::vector<Eigen::MatrixXd>                   &macs,
                 int                                                  &next_id,
-                const double weight = 10.);
+                const double weight        = 10.,
+                const double mac_threshold = 0.3);
+
+    /**
+     * Whether an eigenvalue @p lambda [1/s] is unstable: Re lambda above
+     * both @p tolerance [1/s] and @p relative_tolerance |lambda|.
+     */
+    inline bool
+    is_unstable(const std::complex<double> lambda,
+                const double               tolerance,
+                const double               relative_tolerance)
+    {
+      return lambda.real() > tolerance &&
+             lambda.real() > relative_tolerance * std::abs(lambda);
+    }
 
     /**
      * One interval of the first swept parameter (for example the pad
@@ -81,7 +100,8 @@ namespace squeal
       const std::vector<unsigned int>                      &point_index,
       const std::vector<std::vector<std::complex<double>>> &lambdas,
       const std::vector<std::vector<int>>                  &tracks,
-      const double                                          tolerance);
+      const double                                          tolerance,
+      const double relative_tolerance = 0.);
   } // namespace eigen
 } // namespace squeal
 

@@ -244,6 +244,16 @@ namespace squeal
       double      tolerance          = 1e-10;     ///< SLEPc relative tolerance
       double      target_frequency   = 100.;      ///< Hz, real shift -2 pi f
       double      unstable_tolerance = 1e-3;      ///< 1/s on Re(lambda)
+      /// and relative to |lambda|: unstable when Re(lambda) exceeds both
+      double unstable_relative_tolerance = 1e-6;
+      /// refine the reduced sweep's (nearly) unstable eigenvalues on the
+      /// full model
+      bool certify = true;
+      /// 1/s: eigenvalues within this of the stability threshold are
+      /// refined too
+      double certification_margin = 1.;
+      /// least MAC of a link between the modes of consecutive points
+      double tracking_mac_threshold = 0.3;
       /// Sample values per swept structural parameter for the reduced basis.
       unsigned int reduced_samples = 3;
       double reduced_band_factor   = 1.25; ///< see benchmarks/speed_vs_error
@@ -374,6 +384,8 @@ namespace squeal
                                             ///< never the working directory)
       bool        overwrite   = false; ///< replace an existing output folder
       std::string mode_output = "unstable and first"; ///< or `none`, `all`
+      /// CEA sweep points whose matrices are exported (MatrixMarket)
+      std::vector<unsigned int> export_points;
       /** Declares the subsection's entries: defaults, ranges, help (SI units).
        */
       void

@@ -1,0 +1,234 @@
+// The full solver against an independent dense solve of the same matrices:
+// a small TriboBrake (degree 1, 1 600 DoFs) at mu = 0.6 and the first pad
+// modulus of a list where the full solver finds a locked-in (unstable) pair,
+// non-proportional damping (Rayleigh on the bodies only, the interface
+// stiffness undamped), its M, C, K exported by io::export_matrices in the
+// MatrixMarket format, read back by io::read_matrix_market, and every
+// eigenvalue of the scaled companion pencil computed by LAPACK dggev (QZ,
+// no projection, no shift, no iteration of squeal's). Checks:
+// - the export round trip: the read K has the model's norm (to 1e-13);
+// - the same number of eigenvalues in the band, matched one to one;
+// - frequencies within 1e-8 (relative) and real parts within 1e-6 |lambda|;
+// - the unstable pair is there in both, with its growth rate.
+
+#include <squeal/eigen/full_solver.h>
+#include <squeal/eigen/tracking.h>
+#include <squeal/io/matrix_export.h>
+#include <squeal/physics/structural_model.h>
+
+#include "test_tools.h"
+
+#include <algorithm>
+#include <filesystem>
+
+extern "C" void
+dggev_(const char *jobvl,
+       const char *jobvr,
+       const int  *n,
+       double     *a,
+       const int  *lda,
+       double     *b,
+       const int  *ldb,
+       double     *alphar,
+       double     *alphai,
+       double     *beta,
+       double     *vl,
+       const int  *ldvl,
+       double     *vr,
+       const int  *ldvr,
+       double     *work,
+       const int  *lwork,
+       int        *info);
+
+using namespace dealii;
+using namespace squeal;
+
+namespace
+{
+  Eigen::MatrixXd
+  dense(const io::Triplets &t)
+  {
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(t.rows, t.columns);
+    for (const auto &[i, j, v] : t.entries)
+      A(i, j) += v;
+    return A;
+  }
+
+  // Every eigenvalue of (lambda^2 M + lambda C + K) x = 0 from the
+  // companion pencil [0 I; -K -C] - mu [I 0; 0 M], scaled as by
+  // H.-Y. Fan, W.-W. Lin, P. Van Dooren, SIAM J. Matrix Anal. Appl. 26
+  // (2004) 252-256: lambda = gamma mu, gamma = sqrt(|K| / |M|),
+  // delta = 2 / (|K| + gamma |C|).
+  std::vector<std::complex<double>>
+  companion_eigenvalues(const Eigen::MatrixXd &M,
+                        const Eigen::MatrixXd &C,
+                        const Eigen::MatrixXd &K)
+  {
+    const int    n = M.rows(), n2 = 2 * n;
+    const double gamma = std::sqrt(K.norm() / M.norm()),
+                 delta = 2. / (K.norm() + gamma * C.norm());
+    Eigen::MatrixXd A  = Eigen::MatrixXd::Zero(n2, n2),
+                    B  = Eigen::MatrixXd::Zero(n2, n2);
+    A.topRightCorner(n, n).setIdentity();
+    A.bottomLeftCorner(n, n)  = -delta * K;
+    A.bottomRightCorner(n, n) = -gamma * delta * C;
+    B.topLeftCorner(n, n).setIdentity();
+    B.bottomRightCorner(n, n) = gamma * gamma * delta * M;
+    std::vector<double> ar(n2), ai(n2), be(n2), work(1);
+    int                 lwork = -1, info = 0, one = 1;
+    double              dummy = 0;
+    dggev_("N",
+           "N",
+           &n2,
+           A.data(),
+           &n2,
+           B.data(),
+           &n2,
+           ar.data(),
+           ai.data(),
+           be.data(),
+           &dummy,
+           &one,
+           &dummy,
+           &one,
+           work.data(),
+           &lwork,
+           &info);
+    lwork = int(work[0]);
+    work.resize(lwork);
+    dggev_("N",
+           "N",
+           &n2,
+           A.data(),
+           &n2,
+           B.data(),
+           &n2,
+           ar.data(),
+           ai.data(),
+           be.data(),
+           &dummy,
+           &one,
+           &dummy,
+           &one,
+           work.data(),
+           &lwork,
+           &info);
+    if (info != 0)
+      throw std::runtime_error("dggev failed: info = " + std::to_string(info));
+    std::vector<std::complex<double>> lambda;
+    for (int k = 0; k < n2; ++k)
+      if (be[k] != 0.)
+        lambda.emplace_back(gamma * ar[k] / be[k], gamma * ai[k] / be[k]);
+    return lambda;
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  using test_tools::check;
+  ConditionalOStream quiet(std::cout, false);
+
+  parameters::AllParameters prm = test_tools::coarse_tribobrake(48, 4, 1, 2, 1);
+  prm.mesh.support_cells_length = 4;
+  physics::StructuralModel model(prm, MPI_COMM_WORLD);
+  model.setup_and_assemble(quiet);
+  const auto parts = model.parts();
+
+  const double       f_min = 900., f_max = 20000.;
+  eigen::BandOptions band{f_min, f_max, 100., 1e-10, 60};
+  // the first pad modulus with a locked-in (unstable) pair at mu = 0.6
+  parameters::ScalarPoint       point = model.scene->nominal_point();
+  std::vector<eigen::EigenPair> full;
+  point.set("pad on disc.mu", 0.6);
+  for (const double E : {25e9, 10e9, 40e9, 63e9, 100e9, 5e9})
+    {
+      point.set("pad.E", E);
+      full = eigen::solve_full(parts, point, band, quiet);
+      if (std::any_of(full.begin(), full.end(), [](const auto &p) {
+            return p.lambda.real() > 1e-6 * std::abs(p.lambda);
+          }))
+        break;
+    }
+
+  const std::string dir = "matrices";
+  std::filesystem::create_directories(dir);
+  io::export_matrices(model, {{0, point}}, dir);
+  const Eigen::MatrixXd M =
+                          dense(io::read_matrix_market(dir + "/point_0_M.mtx")),
+                        C =
+                          dense(io::read_matrix_market(dir + "/point_0_C.mtx")),
+                        K =
+                          dense(io::read_matrix_market(dir + "/point_0_K.mtx"));
+  {
+    physics::PETScMatrix Kp;
+    parts.stiffness(point, Kp);
+    check("export: |K|_F read back", K.norm(), Kp.frobenius_norm(), 1e-13);
+  }
+  test_tools::verbose() << "dense solve of " << M.rows()
+                        << " DoFs at E_pad = " << point.get("pad.E") << " Pa"
+                        << std::endl;
+
+  std::vector<std::complex<double>> dense_band;
+  for (const auto &l : companion_eigenvalues(M, C, K))
+    if (l.imag() > 0 && l.imag() / (2 * M_PI) >= f_min &&
+        l.imag() / (2 * M_PI) <= f_max)
+      dense_band.push_back(l);
+
+
+  Eigen::MatrixXd cost(full.size(), dense_band.size());
+  for (unsigned int i = 0; i < full.size(); ++i)
+    for (unsigned int j = 0; j < dense_band.size(); ++j)
+      cost(i, j) =
+        std::abs(dense_band[j] - full[i].lambda) / std::abs(full[i].lambda);
+  const auto   match = eigen::optimal_assignment(cost);
+  double       df = 0., dre = 0.;
+  unsigned int unmatched = 0, unstable_full = 0, unstable_dense = 0;
+  double       growth_full = 0., growth_dense = 0.;
+  for (unsigned int i = 0; i < full.size(); ++i)
+    {
+      const auto f = full[i].lambda;
+      if (match[i] < 0)
+        {
+          ++unmatched;
+          continue;
+        }
+      const auto d = dense_band[match[i]];
+      df           = std::max(df, std::abs(f.imag() - d.imag()) / d.imag());
+      dre          = std::max(dre, std::abs(f.real() - d.real()) / std::abs(d));
+      test_tools::verbose()
+        << "  " << f.imag() / (2 * M_PI) << " Hz: Re " << f.real()
+        << " (full), " << d.real() << " (dense)" << std::endl;
+      if (f.real() > 1e-6 * std::abs(f))
+        {
+          ++unstable_full;
+          growth_full = std::max(growth_full, f.real());
+        }
+    }
+  for (const auto &d : dense_band)
+    if (d.real() > 1e-6 * std::abs(d))
+      {
+        ++unstable_dense;
+        growth_dense = std::max(growth_dense, d.real());
+      }
+  test_tools::verbose() << full.size() << " modes (full), " << dense_band.size()
+                        << " (dense); largest frequency error " << df
+                        << ", real-part error " << dre << " of |lambda|; "
+                        << "growth rate " << growth_full << " (full), "
+                        << growth_dense << " (dense)" << std::endl;
+  check("modes in the band: full = dense", full.size(), dense_band.size(), 0);
+  check("at least 10 modes in the band",
+        std::min<double>(full.size(), 10),
+        10,
+        0);
+  check("every full eigenvalue matched", unmatched, 0, 0);
+  check("frequencies within 1e-8", std::max(df, 1e-8), 1e-8, 0);
+  check("real parts within 1e-6 |lambda|", std::max(dre, 1e-6), 1e-6, 0);
+  check("an unstable (locked-in) mode in the dense solve",
+        std::min(unstable_dense, 1u),
+        1,
+        0);
+  check("unstable modes: full = dense", unstable_full, unstable_dense, 0);
+  return test_tools::finish();
+}
