@@ -530,7 +530,7 @@ namespace squeal
       pcout << "  certified: largest residual " << largest << " after at most "
             << rounds << " rounds, largest change of a reduced eigenvalue "
             << largest_move << " of |lambda|; " << refiner.factorisations()
-            << " factorisations, "
+            << " factorisations (" << refiner.factorisation_seconds() << " s), "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                              start)
                  .count()

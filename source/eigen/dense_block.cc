@@ -6,6 +6,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <petscksp.h>
+#include <slepceps.h>
 
 #include <cmath>
 #include <stdexcept>
@@ -33,6 +34,42 @@ namespace squeal
   {
     namespace internal
     {
+      void
+      check_petsc(const int ierr, const char *who, const char *what)
+      {
+        if (ierr != 0)
+          throw std::runtime_error(
+            std::string(who) + ": PETSc/SLEPc call failed: " + what +
+            " (error code " + std::to_string(ierr) + ")");
+      }
+
+      void
+      use_mumps(void *ksp_handle, const bool cholesky)
+      {
+        const char *who = "direct solver";
+        KSP         ksp = static_cast<KSP>(ksp_handle);
+        PC          pc;
+        check_petsc(KSPSetType(ksp, KSPPREONLY), who, "KSPSetType");
+        check_petsc(KSPGetPC(ksp, &pc), who, "KSPGetPC");
+        check_petsc(PCSetType(pc, cholesky ? PCCHOLESKY : PCLU),
+                    who,
+                    "PCSetType");
+        check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS),
+                    who,
+                    "PCFactorSetMatSolverType");
+      }
+
+      void *
+      shift_invert_with_mumps(void *st_handle, const bool cholesky)
+      {
+        ST  st = static_cast<ST>(st_handle);
+        KSP ksp;
+        check_petsc(STSetType(st, STSINVERT), "shift-and-invert", "STSetType");
+        check_petsc(STGetKSP(st, &ksp), "shift-and-invert", "STGetKSP");
+        use_mumps(ksp, cholesky);
+        return ksp;
+      }
+
       void
       sum_over_ranks(Eigen::MatrixXd &A, MPI_Comm comm)
       {

@@ -49,6 +49,33 @@ namespace squeal
       Eigen::MatrixXd
       orthonormalising_transform(Eigen::MatrixXd gram);
 
+      /**
+       * Throws std::runtime_error "<who>: PETSc/SLEPc call failed: <what>
+       * (error code <ierr>)" when @p ierr is not 0.
+       */
+      void
+      check_petsc(const int ierr, const char *who, const char *what);
+
+      /**
+       * Makes the PETSc KSP @p ksp (cast to void*) a direct solve: one
+       * application (KSPPREONLY) of a MUMPS factorisation, Cholesky when
+       * @p cholesky (a symmetric matrix) else LU.
+       * @throws std::runtime_error if PETSc fails.
+       */
+      void
+      use_mumps(void *ksp, const bool cholesky);
+
+      /**
+       * Makes the SLEPc spectral transformation @p st (an ST cast to
+       * void*) shift-and-invert with a direct MUMPS factorisation, Cholesky
+       * for a symmetric pencil (@p cholesky) else LU, applied once per
+       * iteration (KSPPREONLY).
+       * @return its KSP (cast to void*), which the ST owns
+       * @throws std::runtime_error if SLEPc or PETSc fails.
+       */
+      void *
+      shift_invert_with_mumps(void *st, const bool cholesky);
+
       /** The locally owned entries of @p v, in the order of @p owned. */
       Eigen::VectorXd
       local_part(const PETScVector &v, const dealii::IndexSet &owned);

@@ -29,11 +29,7 @@ namespace squeal
       void
       check(const PetscErrorCode ierr, const char *what)
       {
-        if (ierr != 0)
-          throw std::runtime_error(std::string("full solver: PETSc/SLEPc "
-                                               "call failed: ") +
-                                   what + " (error code " +
-                                   std::to_string(ierr) + ")");
+        internal::check_petsc(ierr, "full solver", what);
       }
 
       double
@@ -64,15 +60,8 @@ namespace squeal
                 "EPSSetWhichEigenpairs");
           check(EPSSetTolerances(eps, tolerance, 2000), "EPSSetTolerances");
           ST st;
-          PC pc;
           check(EPSGetST(eps, &st), "EPSGetST");
-          check(STSetType(st, STSINVERT), "STSetType");
-          check(STGetKSP(st, &ksp), "STGetKSP");
-          check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
-          check(KSPGetPC(ksp, &pc), "KSPGetPC");
-          check(PCSetType(pc, PCCHOLESKY), "PCSetType");
-          check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS),
-                "PCFactorSetMatSolverType");
+          ksp = static_cast<KSP>(internal::shift_invert_with_mumps(st, true));
           check(EPSSetFromOptions(eps), "EPSSetFromOptions");
         }
 
@@ -523,6 +512,7 @@ namespace squeal
       if (!solver || k != key)
         {
           // P = K_s + (2 pi f_t)^2 M: positive definite, one Cholesky
+          const auto start = std::chrono::steady_clock::now();
           solver.reset();
           model.symmetric_stiffness(point, P);
           const double w_t = 2. * numbers::PI * band.target_frequency;
@@ -530,6 +520,7 @@ namespace squeal
           solver = std::make_unique<DirectSolver>(P, true);
           key    = k;
           ++n_factorisations;
+          seconds_factorising += seconds_since(start);
         }
       model.damping(point, C);
       model.stiffness(point, K);

@@ -10,6 +10,8 @@
 #include <petscksp.h>
 #include <slepceps.h>
 
+#include "dense_block.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -26,24 +28,7 @@ namespace squeal
       void
       check(const PetscErrorCode ierr, const char *what)
       {
-        if (ierr != 0)
-          throw std::runtime_error(std::string("SLEPc/PETSc call failed: ") +
-                                   what + " (error code " +
-                                   std::to_string(ierr) + ")");
-      }
-
-      void
-      use_mumps(ST st)
-      {
-        KSP ksp;
-        PC  pc;
-        check(STSetType(st, STSINVERT), "STSetType");
-        check(STGetKSP(st, &ksp), "STGetKSP");
-        check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
-        check(KSPGetPC(ksp, &pc), "KSPGetPC");
-        check(PCSetType(pc, PCLU), "PCSetType");
-        check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS),
-              "PCFactorSetMatSolverType");
+        internal::check_petsc(ierr, "eigensolver", what);
       }
 
       PETScVector
@@ -82,7 +67,7 @@ namespace squeal
                 "EPSSetWhichEigenpairs");
           ST st;
           check(EPSGetST(eps, &st), "EPSGetST");
-          use_mumps(st);
+          internal::shift_invert_with_mumps(st, false);
           check(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT),
                 "EPSSetDimensions");
           check(EPSSetTolerances(eps, options.tolerance, 2000),
@@ -138,14 +123,9 @@ namespace squeal
     DirectSolver::DirectSolver(const PETScMatrix &A, const bool symmetric)
     {
       KSP k;
-      PC  pc;
       check(KSPCreate(A.get_mpi_communicator(), &k), "KSPCreate");
       check(KSPSetOperators(k, A, A), "KSPSetOperators");
-      check(KSPSetType(k, KSPPREONLY), "KSPSetType");
-      check(KSPGetPC(k, &pc), "KSPGetPC");
-      check(PCSetType(pc, symmetric ? PCCHOLESKY : PCLU), "PCSetType");
-      check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS),
-            "PCFactorSetMatSolverType");
+      internal::use_mumps(k, symmetric);
       check(KSPSetUp(k), "KSPSetUp");
       ksp = k;
     }

@@ -152,13 +152,21 @@ namespace squeal
         return n_factorisations;
       }
 
+      /** Wall time spent factorising P so far [s]. */
+      double
+      factorisation_seconds() const
+      {
+        return seconds_factorising;
+      }
+
     private:
       const physics::MatrixParts   &model;
       BandOptions                   band;
       std::vector<double>           key; ///< M and K_s coefficients of P
       PETScMatrix                   P;
       std::unique_ptr<DirectSolver> solver;
-      unsigned int                  n_factorisations = 0;
+      unsigned int                  n_factorisations    = 0;
+      double                        seconds_factorising = 0.;
     };
   } // namespace eigen
 } // namespace squeal
