@@ -77,42 +77,30 @@ namespace
     std::vector<double> ar(n2), ai(n2), be(n2), work(1);
     int                 lwork = -1, info = 0, one = 1;
     double              dummy = 0;
-    dggev_("N",
-           "N",
-           &n2,
-           A.data(),
-           &n2,
-           B.data(),
-           &n2,
-           ar.data(),
-           ai.data(),
-           be.data(),
-           &dummy,
-           &one,
-           &dummy,
-           &one,
-           work.data(),
-           &lwork,
-           &info);
+    // first the workspace query (lwork = -1), then the solve
+    const auto qz = [&]() {
+      dggev_("N",
+             "N",
+             &n2,
+             A.data(),
+             &n2,
+             B.data(),
+             &n2,
+             ar.data(),
+             ai.data(),
+             be.data(),
+             &dummy,
+             &one,
+             &dummy,
+             &one,
+             work.data(),
+             &lwork,
+             &info);
+    };
+    qz();
     lwork = int(work[0]);
     work.resize(lwork);
-    dggev_("N",
-           "N",
-           &n2,
-           A.data(),
-           &n2,
-           B.data(),
-           &n2,
-           ar.data(),
-           ai.data(),
-           be.data(),
-           &dummy,
-           &one,
-           &dummy,
-           &one,
-           work.data(),
-           &lwork,
-           &info);
+    qz();
     if (info != 0)
       throw std::runtime_error("dggev failed: info = " + std::to_string(info));
     std::vector<std::complex<double>> lambda;

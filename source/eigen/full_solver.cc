@@ -294,8 +294,9 @@ namespace squeal
       {
         using Complex             = std::complex<double>;
         const Eigen::MatrixXcd Mc = M.cast<Complex>(), Cc = C.cast<Complex>(),
-                               Kc = K.cast<Complex>();
-        const Eigen::VectorXcd u  = y / y.squaredNorm();
+                               Kc       = K.cast<Complex>();
+        const Eigen::VectorXcd u        = y / y.squaredNorm();
+        double                 previous = 1e300;
         for (unsigned int iteration = 0; iteration < 20; ++iteration)
           {
             const Eigen::MatrixXcd T = mu * mu * Mc + mu * Cc + Kc;
@@ -307,8 +308,11 @@ namespace squeal
             const Complex step = 1. / uz;
             mu -= step;
             y = z / uz;
-            if (std::abs(step) <= 1e-14 * std::abs(mu))
+            // converged, or the steps stopped shrinking (round-off)
+            if (std::abs(step) <= 1e-13 * std::abs(mu) ||
+                std::abs(step) > 0.9 * previous)
               return;
+            previous = std::abs(step);
           }
       }
     } // namespace
