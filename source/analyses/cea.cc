@@ -282,6 +282,7 @@ namespace squeal
       eigen::BandOptions band{
         es.f_min, es.f_max, es.target_frequency, es.tolerance, initial_nev};
       band.residual_tolerance = es.residual_tolerance;
+      band.symmetric_solver   = es.symmetric_solver;
       return band;
     }
 

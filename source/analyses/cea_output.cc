@@ -124,16 +124,18 @@ namespace squeal
             {
               // the full solver's counts and convergence at every point
               std::ofstream fs(work_dir + "/full_solver.csv");
-              fs << "point,modes,symmetric_in_band,symmetric_in_basis,"
-                    "basis_size,rounds,largest_residual,seconds\n"
-                 << std::setprecision(6);
+              fs
+                << "point,modes,symmetric_in_band,symmetric_in_basis,"
+                   "basis_size,rounds,largest_residual,seconds,peak_memory_MB\n"
+                << std::setprecision(6);
               for (unsigned int p = 0; p < points.size(); ++p)
                 {
                   const auto &r = points[p].report;
                   fs << p << ',' << points[p].full.size() << ','
                      << r.symmetric_in_band << ',' << r.symmetric_in_basis
                      << ',' << r.basis_size << ',' << r.rounds << ','
-                     << r.largest_residual << ',' << r.seconds << '\n';
+                     << r.largest_residual << ',' << r.seconds << ','
+                     << r.peak_memory_mb << '\n';
                 }
             }
           if (!check_rows.empty())

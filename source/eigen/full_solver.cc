@@ -3,6 +3,9 @@
 // their span by block Davidson rounds (see full_solver.h).
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/lac/parpack_solver.h>
+#include <deal.II/lac/solver_control.h>
 
 #include <squeal/eigen/full_solver.h>
 
@@ -121,6 +124,97 @@ namespace squeal
       private:
         EPS eps;
         KSP ksp;
+      };
+
+      // The same with PARPACK (implicitly restarted Lanczos, mode 3:
+      // shift-and-invert of the symmetric pencil) through deal.II's
+      // PArpackSolver, the factorisation a DirectSolver (MUMPS Cholesky).
+      class ArpackModes
+      {
+      public:
+        ArpackModes(const PETScMatrix &K,
+                    const PETScMatrix &M,
+                    const double       sigma,
+                    const double       tolerance)
+          : K(K)
+          , sigma(sigma)
+          , tolerance(tolerance)
+        {
+          P.reinit(K);
+          P.copy_from(K);
+          P.add(-sigma, M);
+          factorisation = std::make_unique<DirectSolver>(P, true);
+        }
+
+        std::vector<UndampedMode>
+        solve(const PETScMatrix &M, const unsigned int wanted, const double top)
+        {
+          // x = (K - sigma M)^-1 b for PARPACK
+          struct Inverse
+          {
+            const DirectSolver &solver;
+            void
+            vmult(PETScVector &x, const PETScVector &b) const
+            {
+              solver.solve(b, x);
+            }
+          } inverse{*factorisation};
+          const IndexSet            owned = M.locally_owned_range_indices();
+          const MPI_Comm            comm  = M.get_mpi_communicator();
+          std::vector<UndampedMode> modes;
+          for (unsigned int attempt = 0; attempt < 2; ++attempt)
+            {
+              const unsigned int nev =
+                std::min<unsigned int>(M.m() / 2 - 1,
+                                       wanted + 2 + 10 * attempt);
+              using Arpack = PArpackSolver<PETScVector>;
+              SolverControl                control(10000, tolerance);
+              const Arpack::AdditionalData data(
+                std::min<unsigned int>(2 * nev + 2, M.m()),
+                Arpack::largest_magnitude,
+                true,
+                3);
+              Arpack arpack(control, comm, data);
+              arpack.reinit(owned);
+              arpack.set_shift(sigma);
+              std::vector<std::complex<double>> lambda(nev);
+              std::vector<PETScVector> x(nev, PETScVector(owned, comm));
+              try
+                {
+                  arpack.solve(K, M, inverse, lambda, x, nev);
+                }
+              catch (const std::exception &e)
+                {
+                  throw std::runtime_error(
+                    std::string("full solver: PARPACK failed: ") + e.what());
+                }
+              modes.clear();
+              for (unsigned int i = 0; i < nev; ++i)
+                if (lambda[i].real() < top)
+                  modes.push_back(
+                    {{lambda[i].real(), 0.}, x[i], PETScVector()});
+              if (modes.size() == wanted)
+                break;
+            }
+          std::sort(modes.begin(),
+                    modes.end(),
+                    [](const auto &a, const auto &b) {
+                      return a.omega2.real() < b.omega2.real();
+                    });
+          return modes;
+        }
+
+        void *
+        solver() const
+        {
+          return factorisation->handle();
+        }
+
+      private:
+        const PETScMatrix            &K;
+        const double                  sigma, tolerance;
+        PETScMatrix                   P;
+        std::unique_ptr<DirectSolver> factorisation;
       };
 
       // The subspace V of the refinement with its products M V, C V, K V
@@ -401,9 +495,22 @@ namespace squeal
       r.symmetric_in_band  = counts[2] - counts[1];
       r.symmetric_in_basis = counts[3];
 
-      const double   t_count = seconds_since(start);
-      SymmetricModes symmetric(K_s, M, sigma, band.tolerance);
-      const auto     modes = symmetric.solve(M, r.symmetric_in_basis, top);
+      const double                    t_count = seconds_since(start);
+      std::unique_ptr<SymmetricModes> slepc;
+      std::unique_ptr<ArpackModes>    arpack;
+      std::vector<UndampedMode>       modes;
+      if (band.symmetric_solver == "arpack")
+        {
+          arpack = std::make_unique<ArpackModes>(K_s, M, sigma, band.tolerance);
+          modes  = arpack->solve(M, r.symmetric_in_basis, top);
+        }
+      else
+        {
+          slepc =
+            std::make_unique<SymmetricModes>(K_s, M, sigma, band.tolerance);
+          modes = slepc->solve(M, r.symmetric_in_basis, top);
+        }
+      void *const factorised = arpack ? arpack->solver() : slepc->solver();
       if (modes.size() != r.symmetric_in_basis)
         throw std::runtime_error(
           "full solver: the symmetric eigensolver returned " +
@@ -434,7 +541,7 @@ namespace squeal
         const int       m = s.V.cols();
         Eigen::MatrixXd forces(n, 2 * m);
         forces << s.WC, s.WK - s.WM * omega2.asDiagonal();
-        s.append(internal::solve_block(symmetric.solver(), K_s, forces));
+        s.append(internal::solve_block(factorised, K_s, forces));
       }
       const double t_projection = seconds_since(start) - t_symmetric;
 
@@ -448,7 +555,7 @@ namespace squeal
           res = residuals(s, pairs, band.residual_tolerance, corrections);
           if (corrections.cols() == 0 || r.rounds == band.max_rounds)
             break;
-          s.append(internal::solve_block(symmetric.solver(), K_s, corrections));
+          s.append(internal::solve_block(factorised, K_s, corrections));
         }
       r.basis_size = s.V.cols();
       std::vector<EigenPair> result;
@@ -474,6 +581,12 @@ namespace squeal
           result.push_back(std::move(p));
         }
       r.seconds = seconds_since(start);
+      {
+        Utilities::System::MemoryStats stats;
+        Utilities::System::get_memory_stats(stats);
+        r.peak_memory_mb =
+          Utilities::MPI::sum(double(stats.VmHWM), s.comm) / 1024.;
+      }
       pcout << "  full solver: " << result.size()
             << " modes in the band; symmetric problem (no friction) "
             << r.symmetric_in_band << " in the band and "
@@ -485,7 +598,10 @@ namespace squeal
             << r.above_tolerance << " above " << band.residual_tolerance
             << "); " << t_count << " s count, " << t_symmetric - t_count
             << " s symmetric modes, " << t_projection << " s projection, "
-            << r.seconds - t_symmetric - t_projection << " s refinement"
+            << r.seconds - t_symmetric - t_projection << " s refinement ("
+            << band.symmetric_solver
+            << " for the symmetric modes); peak memory " << r.peak_memory_mb
+            << " MB (" << 1024. * r.peak_memory_mb / M.m() << " kB per DoF)"
             << std::endl;
       if (report)
         *report = r;

@@ -324,6 +324,16 @@ namespace squeal
                         "certified (the reduced solver's error in "
                         "Re(lambda) is below 0.2 1/s on the TriboBrake, "
                         "benchmarks/cea_tribobrake).");
+      prm.declare_entry("Symmetric eigensolver",
+                        symmetric_solver,
+                        Patterns::Selection("slepc|arpack"),
+                        "The full solver's eigensolver for the modes of the "
+                        "symmetric problem (the basis whose size the inertia "
+                        "count fixes): slepc (Krylov-Schur) or arpack "
+                        "(PARPACK's implicitly restarted Lanczos through "
+                        "deal.II), both shift-and-invert with a MUMPS "
+                        "Cholesky factorisation; the results agree "
+                        "(cea_tribobrake_coarse).");
       prm.declare_entry("Tracking MAC threshold",
                         str(tracking_mac_threshold),
                         Patterns::Double(0., 1.),
@@ -415,6 +425,7 @@ namespace squeal
       certify                  = prm.get_bool("Certify stability map");
       certification_margin     = prm.get_double("Certification margin");
       tracking_mac_threshold   = prm.get_double("Tracking MAC threshold");
+      symmetric_solver         = prm.get("Symmetric eigensolver");
       reduced_samples          = prm.get_integer("Reduced samples");
       reduced_band_factor      = prm.get_double("Reduced band factor");
       reduced_enrichment       = prm.get_bool("Reduced enrichment");

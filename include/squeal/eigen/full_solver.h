@@ -64,6 +64,9 @@ namespace squeal
       double       largest_residual   = 0; ///< relative, over the pairs
       unsigned int above_tolerance    = 0; ///< pairs above the tolerance
       double       seconds            = 0; ///< wall time of the solve [s]
+      /// peak resident memory of the processes so far (VmHWM summed over
+      /// the ranks) [MB]: an upper bound of the solve's memory
+      double peak_memory_mb = 0;
     };
 
     /**

@@ -20,6 +20,7 @@
 #include <deal.II/lac/petsc_vector.h>
 
 #include <complex>
+#include <string>
 #include <vector>
 
 namespace squeal
@@ -45,6 +46,11 @@ namespace squeal
       double basis_factor = 1.5;
       /// Refinement rounds of the full solver before it gives up.
       unsigned int max_rounds = 20;
+      /// The full solver's symmetric eigensolver: `slepc` (Krylov-Schur)
+      /// or `arpack` (PARPACK's implicitly restarted Lanczos through
+      /// deal.II's PArpackSolver), both shift-and-invert with MUMPS
+      /// Cholesky.
+      std::string symmetric_solver = "slepc";
     };
 
     /**

@@ -254,6 +254,8 @@ namespace squeal
       double certification_margin = 1.;
       /// least MAC of a link between the modes of consecutive points
       double tracking_mac_threshold = 0.3;
+      /// the full solver's symmetric eigensolver: `slepc` or `arpack`
+      std::string symmetric_solver = "slepc";
       /// Sample values per swept structural parameter for the reduced basis.
       unsigned int reduced_samples = 3;
       double reduced_band_factor   = 1.25; ///< see benchmarks/speed_vs_error
