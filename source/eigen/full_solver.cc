@@ -228,11 +228,12 @@ namespace squeal
         // Appends the part of the block T M-orthogonal to V: two passes of
         // T -= V (V^T M V)^-1 V^T M T, exact whatever V's orthonormality;
         // columns whose remainder is below 1e-8 of their M-norm are dropped,
-        // the rest M-orthonormalised among themselves (the first block by
-        // a Cholesky factor of its Gram matrix, which keeps modes that are
-        // M-orthonormal nearly as they are).
+        // the rest M-orthonormalised among themselves (a first block of
+        // nearly M-orthonormal @p modes by a Cholesky factor of its Gram
+        // matrix, which keeps them nearly as they are; otherwise by
+        // orthonormalising_transform, which drops dependent directions).
         void
-        append(Eigen::MatrixXd T)
+        append(Eigen::MatrixXd T, const bool modes = false)
         {
           Eigen::VectorXd in_span = Eigen::VectorXd::Zero(T.cols());
           for (unsigned int pass = 0; pass < 2 && V.cols() > 0; ++pass)
@@ -265,7 +266,7 @@ namespace squeal
                 gram_k(a, b) = gram(keep[a], keep[b]);
             }
           Eigen::MatrixXd S;
-          if (V.cols() == 0)
+          if (V.cols() == 0 && modes)
             {
               // S = L^-T, gram = L L^T
               const Eigen::LLT<Eigen::MatrixXd> llt(gram_k);
@@ -372,6 +373,36 @@ namespace squeal
           {
             corrections.col(2 * a)     = Rr.col(above[a]);
             corrections.col(2 * a + 1) = Ri.col(above[a]);
+          }
+        return result;
+      }
+
+      // The Ritz pairs (lambda, V q) of the subspace as distributed
+      // vectors, with their relative residuals RES.
+      std::vector<EigenPair>
+      ritz_pairs(const Subspace                             &s,
+                 const IndexSet                             &owned,
+                 const std::vector<internal::ProjectedPair> &pairs,
+                 const std::vector<double>                  &res)
+      {
+        std::vector<EigenPair> result;
+        for (unsigned int j = 0; j < pairs.size(); ++j)
+          {
+            EigenPair p;
+            p.lambda   = pairs[j].lambda;
+            p.residual = res[j];
+            p.re.reinit(owned, s.comm);
+            p.im.reinit(owned, s.comm);
+            const Eigen::VectorXd xr = s.V * pairs[j].q.real(),
+                                  xi = s.V * pairs[j].q.imag();
+            for (int k = 0; k < xr.size(); ++k)
+              {
+                p.re(owned.nth_index_in_set(k)) = xr[k];
+                p.im(owned.nth_index_in_set(k)) = xi[k];
+              }
+            p.re.compress(VectorOperation::insert);
+            p.im.compress(VectorOperation::insert);
+            result.push_back(std::move(p));
           }
         return result;
       }
@@ -533,7 +564,7 @@ namespace squeal
       s.Mr.resize(0, 0);
       s.Cr.resize(0, 0);
       s.Kr.resize(0, 0);
-      s.append(Phi);
+      s.append(Phi, true);
       // static corrections of the damping and the friction forces
       // (K - K_s) Phi = K Phi - M Phi Omega^2 (V = Phi to the eigensolver's
       // tolerance: enough for a direction of the subspace)
@@ -557,28 +588,13 @@ namespace squeal
             break;
           s.append(internal::solve_block(factorised, K_s, corrections));
         }
-      r.basis_size = s.V.cols();
-      std::vector<EigenPair> result;
-      for (unsigned int j = 0; j < pairs.size(); ++j)
+      r.basis_size                  = s.V.cols();
+      std::vector<EigenPair> result = ritz_pairs(s, owned, pairs, res);
+      for (const EigenPair &p : result)
         {
-          EigenPair p;
-          p.lambda   = pairs[j].lambda;
-          p.residual = res[j];
-          p.re.reinit(owned, s.comm);
-          p.im.reinit(owned, s.comm);
-          const Eigen::VectorXd xr = s.V * pairs[j].q.real(),
-                                xi = s.V * pairs[j].q.imag();
-          for (int k = 0; k < n; ++k)
-            {
-              p.re(owned.nth_index_in_set(k)) = xr[k];
-              p.im(owned.nth_index_in_set(k)) = xi[k];
-            }
-          p.re.compress(VectorOperation::insert);
-          p.im.compress(VectorOperation::insert);
           r.largest_residual = std::max(r.largest_residual, p.residual);
           if (p.residual > band.residual_tolerance)
             ++r.above_tolerance;
-          result.push_back(std::move(p));
         }
       r.seconds = seconds_since(start);
       {
@@ -606,6 +622,98 @@ namespace squeal
       if (report)
         *report = r;
       return result;
+    }
+
+    std::vector<EigenPair>
+    solve_on_iterates(const physics::MatrixParts     &model,
+                      const parameters::ScalarPoint  &point,
+                      const BandOptions              &band,
+                      const std::vector<PETScVector> &start,
+                      const std::vector<double>      &frequency,
+                      const unsigned int              levels,
+                      IterateReport                  *report)
+    {
+      if (frequency.size() != start.size())
+        throw std::logic_error("solve_on_iterates: one frequency per vector");
+      const auto  t0 = std::chrono::steady_clock::now();
+      PETScMatrix M, C, K, K_s;
+      model.mass(point, M);
+      model.stiffness(point, K);
+      model.damping(point, C);
+      model.symmetric_stiffness(point, K_s);
+      const IndexSet owned = M.locally_owned_range_indices();
+      const int      n     = owned.n_elements();
+      IterateReport  r;
+      Subspace s{M, C, K, M.get_mpi_communicator(), {}, {}, {}, {}, {}, {}, {}};
+      s.Mr.resize(0, 0);
+      s.Cr.resize(0, 0);
+      s.Kr.resize(0, 0);
+      // shifts at the geometric centres of sub-bands at most an octave wide
+      const double       f_lo = std::max(band.f_min, 1.), f_hi = band.f_max;
+      const unsigned int n_shifts =
+        std::max(1, int(std::ceil(std::log2(f_hi / f_lo) - 1e-9)));
+      const double ratio = std::pow(f_hi / f_lo, 1. / n_shifts);
+      for (unsigned int i = 0; i < n_shifts; ++i)
+        {
+          const double f_lower = f_lo * std::pow(ratio, i),
+                       f_shift = f_lower * std::sqrt(ratio);
+          std::vector<unsigned int> mine;
+          for (unsigned int k = 0; k < start.size(); ++k)
+            if ((frequency[k] >= f_lower || i == 0) &&
+                (frequency[k] < f_lower * ratio || i + 1 == n_shifts))
+              mine.push_back(k);
+          if (mine.empty())
+            continue;
+          Eigen::MatrixXd X(n, mine.size());
+          for (unsigned int a = 0; a < mine.size(); ++a)
+            X.col(a) = internal::local_part(start[mine[a]], owned);
+          const auto   t_factor = std::chrono::steady_clock::now();
+          PETScMatrix  A;
+          const double w = 2. * numbers::PI * f_shift;
+          A.reinit(K_s);
+          A.copy_from(K_s);
+          A.add(-w * w, M);
+          const DirectSolver solver(A, true);
+          r.factorisation_seconds += seconds_since(t_factor);
+          ++r.factorisations;
+          const auto t_solve = std::chrono::steady_clock::now();
+          std::vector<Eigen::MatrixXd> blocks{X};
+          for (unsigned int level = 0; level < levels; ++level)
+            {
+              Eigen::MatrixXd Y =
+                internal::solve_block(solver.handle(),
+                                      A,
+                                      multiply(M, blocks.back()));
+              // unit columns: the iterates grow like 1 / |omega^2 - w^2|
+              Eigen::RowVectorXd norms = Y.colwise().squaredNorm();
+              Eigen::MatrixXd    sq    = norms;
+              internal::sum_over_ranks(sq, s.comm);
+              for (int j = 0; j < Y.cols(); ++j)
+                if (sq(0, j) > 0.)
+                  Y.col(j) /= std::sqrt(sq(0, j));
+              blocks.push_back(std::move(Y));
+            }
+          r.solve_seconds += seconds_since(t_solve);
+          for (auto &b : blocks)
+            s.append(std::move(b));
+        }
+      const auto t_project = std::chrono::steady_clock::now();
+      const auto pairs =
+        internal::projected_eigenpairs(s.Mr,
+                                       s.Cr,
+                                       s.Kr,
+                                       band.f_min,
+                                       band.f_max,
+                                       -2. * numbers::PI *
+                                         band.target_frequency);
+      Eigen::MatrixXd unused;
+      const auto      res = residuals(s, pairs, 1., unused);
+      r.projected_seconds = seconds_since(t_project);
+      r.basis_size        = s.V.cols();
+      r.seconds           = seconds_since(t0);
+      if (report)
+        *report = r;
+      return ritz_pairs(s, owned, pairs, res);
     }
 
     PairRefiner::PairRefiner(const physics::MatrixParts &model,

@@ -541,41 +541,6 @@ namespace squeal
       return m;
     }
 
-    void
-    add_cell_elasticity(const FEValues<3>  &fe_values,
-                        const double        lambda,
-                        const double        mu,
-                        const double        density,
-                        FullMatrix<double> &cell_k,
-                        FullMatrix<double> &cell_m)
-    {
-      const FiniteElement<3> &fe = fe_values.get_fe();
-      const unsigned int      n  = fe.n_dofs_per_cell();
-      for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
-        {
-          const double JxW = fe_values.JxW(q);
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              const unsigned int ci = fe.system_to_component_index(i).first;
-              const Tensor<1, 3> gi = fe_values.shape_grad(i, q);
-              const double       vi = fe_values.shape_value(i, q);
-              for (unsigned int j = 0; j < n; ++j)
-                {
-                  const unsigned int cj = fe.system_to_component_index(j).first;
-                  const Tensor<1, 3> gj = fe_values.shape_grad(j, q);
-                  double k = lambda * gi[ci] * gj[cj] + mu * gi[cj] * gj[ci];
-                  if (ci == cj)
-                    {
-                      k += mu * (gi * gj);
-                      cell_m(i, j) +=
-                        density * vi * fe_values.shape_value(j, q) * JxW;
-                    }
-                  cell_k(i, j) += k * JxW;
-                }
-            }
-        }
-    }
-
     std::pair<unsigned int, unsigned int>
     StructuralModel::assemble_elasticity(const parameters::ScalarPoint &nominal,
                                          MatrixParts                   &parts)

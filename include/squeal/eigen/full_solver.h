@@ -100,6 +100,47 @@ namespace squeal
                dealii::ConditionalOStream    &pcout,
                FullSolveReport               *report = nullptr);
 
+    /** Where solve_on_iterates() spent its time. */
+    struct IterateReport
+    {
+      unsigned int factorisations  = 0;  ///< one per shift
+      unsigned int basis_size      = 0;  ///< M-orthonormal directions kept
+      double factorisation_seconds = 0.; ///< MUMPS LDL^T of K_s - w^2 M [s]
+      double solve_seconds         = 0.; ///< block solves and products [s]
+      double projected_seconds     = 0.; ///< dense projected problem, residuals
+      double seconds               = 0.; ///< the whole call [s]
+    };
+
+    /**
+     * The eigenpairs in the band of (lambda^2 M + lambda C + K) phi = 0 at
+     * @p p by Rayleigh-Ritz on the span of given vectors and of their
+     * shift-and-invert iterates (A_i^-1 M)^l x for l = 1..@p levels, with
+     * A_i = K_s(p) - (2 pi f_i)^2 M(p) and f_i the centre (on a log scale)
+     * of the sub-band, at most an octave wide, that holds the vector's
+     * @p frequency [Hz]: one MUMPS LDL^T factorisation per sub-band (A_i is
+     * indefinite) and one multi-right-hand-side solve per level (the
+     * subspace iteration of K.-J. Bathe, Finite Element Procedures, 1996,
+     * Sec. 11.6, with a shift per octave). The projected quadratic problem
+     * is solved as in solve_full(). Used to estimate the discretisation
+     * error at a higher degree from the modes of the lower one carried to
+     * it (the spaces are nested, so the start vectors alone reproduce the
+     * lower degree's eigenvalues; the iterates add the richer space's
+     * correction). The Ritz values of a subspace lie short of the exact
+     * ones; each returned pair carries its relative residual on the full
+     * model (EigenPair::residual). @p start: vectors of the model's size
+     * (n), one @p frequency each. Collective.
+     * @throws std::runtime_error if a factorisation or a PETSc call fails;
+     *   std::logic_error if the sizes differ.
+     */
+    std::vector<EigenPair>
+    solve_on_iterates(const physics::MatrixParts     &model,
+                      const parameters::ScalarPoint  &p,
+                      const BandOptions              &band,
+                      const std::vector<PETScVector> &start,
+                      const std::vector<double>      &frequency,
+                      unsigned int                    levels,
+                      IterateReport                  *report = nullptr);
+
     /** One eigenpair refined on the full model by PairRefiner. */
     struct RefinedPair
     {

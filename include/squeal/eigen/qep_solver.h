@@ -98,8 +98,10 @@ namespace squeal
     {
     public:
       /**
-       * Factorises @p A (n x n): LU, or Cholesky when @p symmetric (A
-       * symmetric positive definite). @throws std::runtime_error on failure.
+       * Factorises @p A (n x n): LU, or when @p symmetric MUMPS' symmetric
+       * LDL^T (A symmetric, positive definite or indefinite: MUMPS SYM = 2,
+       * PETSc's default for a matrix not flagged SPD).
+       * @throws std::runtime_error on failure.
        */
       explicit DirectSolver(const PETScMatrix &A, const bool symmetric = false);
       ~DirectSolver();
