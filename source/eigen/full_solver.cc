@@ -219,11 +219,52 @@ namespace squeal
 
       // The subspace V of the refinement with its products M V, C V, K V
       // and the projected matrices V^T A V (local rows; V M-orthonormal).
+      // M, C, K and K_s of the model at a point
+      struct PointMatrices
+      {
+        PETScMatrix M, C, K, K_s;
+
+        PointMatrices(const physics::MatrixParts    &model,
+                      const parameters::ScalarPoint &point)
+        {
+          model.mass(point, M);
+          model.stiffness(point, K);
+          model.damping(point, C);
+          model.symmetric_stiffness(point, K_s);
+        }
+      };
+
       struct Subspace
       {
         const PETScMatrix &M, &C, &K;
         MPI_Comm           comm;
         Eigen::MatrixXd    V, WM, WC, WK, Mr, Cr, Kr;
+
+        // an empty subspace of the model at a point
+        explicit Subspace(const PointMatrices &A)
+          : M(A.M)
+          , C(A.C)
+          , K(A.K)
+          , comm(A.M.get_mpi_communicator())
+        {}
+
+        // the subspace of a reduced basis with its stored products
+        Subspace(const PETScMatrix &M,
+                 const PETScMatrix &C,
+                 const PETScMatrix &K,
+                 const Projection  &start)
+          : M(M)
+          , C(C)
+          , K(K)
+          , comm(M.get_mpi_communicator())
+          , V(start.V)
+          , WM(start.MV)
+          , WC(start.CV)
+          , WK(start.KV)
+          , Mr(start.Mr)
+          , Cr(start.Cr)
+          , Kr(start.Kr)
+        {}
 
         // Appends the part of the block T M-orthogonal to V: two passes of
         // T -= V (V^T M V)^-1 V^T M T, exact whatever V's orthonormality;
@@ -501,14 +542,11 @@ namespace squeal
                ConditionalOStream            &pcout,
                FullSolveReport               *report)
     {
-      const auto  start = std::chrono::steady_clock::now();
-      PETScMatrix M, C, K, K_s;
-      model.mass(point, M);
-      model.stiffness(point, K);
-      model.damping(point, C);
-      model.symmetric_stiffness(point, K_s);
-      const double w_t    = 2. * numbers::PI * band.target_frequency;
-      const auto   square = [](const double f) {
+      const auto          start = std::chrono::steady_clock::now();
+      const PointMatrices A(model, point);
+      const PETScMatrix  &M = A.M, &C = A.C, &K = A.K, &K_s = A.K_s;
+      const double        w_t    = 2. * numbers::PI * band.target_frequency;
+      const auto          square = [](const double f) {
         return std::pow(2. * numbers::PI * f, 2);
       };
       const double sigma  = -w_t * w_t;
@@ -560,10 +598,7 @@ namespace squeal
           Phi.col(j) = internal::local_part(modes[j].re, owned);
           omega2[j]  = modes[j].omega2.real();
         }
-      Subspace s{M, C, K, M.get_mpi_communicator(), {}, {}, {}, {}, {}, {}, {}};
-      s.Mr.resize(0, 0);
-      s.Cr.resize(0, 0);
-      s.Kr.resize(0, 0);
+      Subspace s(A);
       s.append(Phi, true);
       // static corrections of the damping and the friction forces
       // (K - K_s) Phi = K Phi - M Phi Omega^2 (V = Phi to the eigensolver's
@@ -635,19 +670,13 @@ namespace squeal
     {
       if (frequency.size() != start.size())
         throw std::logic_error("solve_on_iterates: one frequency per vector");
-      const auto  t0 = std::chrono::steady_clock::now();
-      PETScMatrix M, C, K, K_s;
-      model.mass(point, M);
-      model.stiffness(point, K);
-      model.damping(point, C);
-      model.symmetric_stiffness(point, K_s);
-      const IndexSet owned = M.locally_owned_range_indices();
-      const int      n     = owned.n_elements();
-      IterateReport  r;
-      Subspace s{M, C, K, M.get_mpi_communicator(), {}, {}, {}, {}, {}, {}, {}};
-      s.Mr.resize(0, 0);
-      s.Cr.resize(0, 0);
-      s.Kr.resize(0, 0);
+      const auto          t0 = std::chrono::steady_clock::now();
+      const PointMatrices AP(model, point);
+      const PETScMatrix  &M = AP.M, &K_s = AP.K_s;
+      const IndexSet      owned = M.locally_owned_range_indices();
+      const int           n     = owned.n_elements();
+      IterateReport       r;
+      Subspace            s(AP);
       // shifts at the geometric centres of sub-bands at most an octave wide
       const double       f_lo = std::max(band.f_min, 1.), f_hi = band.f_max;
       const unsigned int n_shifts =
@@ -752,17 +781,7 @@ namespace squeal
         }
       model.damping(point, C);
       model.stiffness(point, K);
-      Subspace                             s{M,
-                 C,
-                 K,
-                 M.get_mpi_communicator(),
-                 start.V,
-                 start.MV,
-                 start.CV,
-                 start.KV,
-                 start.Mr,
-                 start.Cr,
-                 start.Kr};
+      Subspace                             s(M, C, K, start);
       const unsigned int                   n_pairs = lambda.size();
       std::vector<internal::ProjectedPair> pairs(n_pairs);
       for (unsigned int j = 0; j < n_pairs; ++j)

@@ -5,6 +5,7 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/qep_solver.h>
 
 #include <petscksp.h>
@@ -54,6 +55,14 @@ namespace squeal
       const double   needed = w_1 * w_1 - sigma;
       const PetscInt n      = M.m();
       PetscInt       nev    = std::min<PetscInt>(options.initial_nev, n);
+      if (symmetric)
+        {
+          // Sylvester inertia: exactly this many eigenvalues lie below
+          // w_1^2, so one solve asks for all of them and two more
+          const unsigned int count =
+            count_eigenvalues_below(K, M, {w_1 * w_1})[0];
+          nev = std::min<PetscInt>(n, count + 2);
+        }
       for (unsigned int attempt = 0;; ++attempt)
         {
           EPS eps;
@@ -67,7 +76,7 @@ namespace squeal
                 "EPSSetWhichEigenpairs");
           ST st;
           check(EPSGetST(eps, &st), "EPSGetST");
-          internal::shift_invert_with_mumps(st, false);
+          internal::shift_invert_with_mumps(st, symmetric);
           check(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT),
                 "EPSSetDimensions");
           check(EPSSetTolerances(eps, options.tolerance, 2000),

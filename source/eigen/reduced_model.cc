@@ -69,48 +69,63 @@ namespace squeal
                 << samples.size() << std::endl;
           const auto modes =
             solve_undamped(M, K, sample_band, band_factor, true, pcout);
-          // the next sample has about as many modes: ask for them at once
-          sample_band.initial_nev = modes.size() + modes.size() / 5 + 10;
           largest_sample = std::max<unsigned int>(largest_sample, modes.size());
+          // Enrichment, one block solve per level with a Cholesky
+          // factorisation of K_s. Rayleigh damping beta K_s is not
+          // proportional to K_s + K_n: the static response to the
+          // interface forces K^-1 K_n phi corrects the damped shapes; the
+          // friction forces give K^-1 K_t phi, K^-1 K_t K^-1 K_t phi, ...
+          // (each force scaled to unit norm; a zero force adds nothing and
+          // ends its mode's chain).
+          const int       m = modes.size();
+          Eigen::MatrixXd Phi(owned.n_elements(), m);
+          for (int j = 0; j < m; ++j)
+            Phi.col(j) = local_part(modes[j].re, owned);
           std::unique_ptr<DirectSolver> solver;
           if (enrichment_depth > 0)
-            solver = std::make_unique<DirectSolver>(K);
-
-          PETScVector force(owned, comm), response(owned, comm);
-          for (const auto &mode : modes)
+            solver = std::make_unique<DirectSolver>(K, true);
+          // K^-1 F for the forces F = A X scaled to unit norm; alive[j]
+          // false for a zero force (its column of the result is zero)
+          const auto responses = [&](const PETScMatrix     &A,
+                                     const Eigen::MatrixXd &X,
+                                     std::vector<bool>     &alive) {
+            Eigen::MatrixXd F     = multiply(A, X);
+            Eigen::MatrixXd norms = F.colwise().squaredNorm();
+            sum_over_ranks(norms, comm);
+            for (int j = 0; j < m; ++j)
+              {
+                alive[j] = alive[j] && norms(0, j) > 0.;
+                if (alive[j])
+                  F.col(j) /= std::sqrt(norms(0, j));
+                else
+                  F.col(j).setZero();
+              }
+            return internal::solve_block(solver->handle(), K, F);
+          };
+          std::vector<bool> normal(m, enrichment_depth > 0 && has_normal);
+          Eigen::MatrixXd   normal_response;
+          if (enrichment_depth > 0 && has_normal)
+            normal_response = responses(K_n, Phi, normal);
+          std::vector<std::vector<bool>> friction;
+          std::vector<Eigen::MatrixXd>   friction_response;
+          for (unsigned int level = 0; level < enrichment_depth && has_friction;
+               ++level)
             {
-              columns.push_back(local_part(mode.re, owned));
-              if (enrichment_depth > 0)
-                {
-                  // Rayleigh damping beta K_s is not proportional to
-                  // K_s + K_n: the static response to the interface forces
-                  // K^-1 K_n phi corrects the damped shapes.
-                  if (has_normal)
-                    K_n.vmult(force, mode.re);
-                  else
-                    force = 0.;
-                  const double norm = force.l2_norm();
-                  if (norm > 0)
-                    {
-                      force /= norm;
-                      solver->solve(force, response);
-                      columns.push_back(local_part(response, owned));
-                    }
-                }
-              PETScVector x = mode.re;
-              for (unsigned int level = 0; level < enrichment_depth; ++level)
-                {
-                  if (!has_friction)
-                    break;
-                  K_t.vmult(force, x);
-                  const double norm = force.l2_norm();
-                  if (norm == 0)
-                    break;
-                  force /= norm; // scale is irrelevant; keep it O(1)
-                  solver->solve(force, response);
-                  columns.push_back(local_part(response, owned));
-                  x = response;
-                }
+              friction.push_back(level == 0 ? std::vector<bool>(m, true) :
+                                              friction.back());
+              friction_response.push_back(
+                responses(K_t,
+                          level == 0 ? Phi : friction_response.back(),
+                          friction.back()));
+            }
+          for (int j = 0; j < m; ++j)
+            {
+              columns.push_back(Phi.col(j));
+              if (normal[j])
+                columns.push_back(normal_response.col(j));
+              for (unsigned int level = 0; level < friction.size(); ++level)
+                if (friction[level][j])
+                  columns.push_back(friction_response[level].col(j));
             }
         }
       if (Utilities::MPI::max(columns.size(), comm) == 0)

@@ -7,12 +7,14 @@
  *
  * solve_undamped() finds every mode of K phi = omega^2 M phi up to a
  * frequency: one real shift sigma = -(2 pi f_t)^2 (f_t small, default
- * 100 Hz) with shift-and-invert (MUMPS LU of K - sigma M), asking for more
- * eigenvalues until the farthest converged one lies beyond the wanted
- * frequency. The reduced basis (reduced_model.h) uses it on the symmetric
- * problem. The full solver of the damped quadratic problem, with its
- * inertia count, is in full_solver.h. A negative shift keeps K - sigma M
- * regular when K is singular (a free rigid-body motion).
+ * 100 Hz) with shift-and-invert (MUMPS Cholesky of K - sigma M for a
+ * symmetric pencil, LU otherwise). A symmetric pencil's modes below the
+ * frequency are counted first by Sylvester inertia and asked for at once;
+ * otherwise more eigenvalues are asked for until the farthest converged
+ * one lies beyond the wanted frequency. The reduced basis (reduced_model.h)
+ * uses it on the symmetric problem. The full solver of the damped quadratic
+ * problem, with its inertia count, is in full_solver.h. A negative shift keeps
+ * K - sigma M regular when K is singular (a free rigid-body motion).
  */
 
 #include <deal.II/base/conditional_ostream.h>
@@ -77,7 +79,9 @@ namespace squeal
      * Every eigenpair of K phi = omega^2 M phi with Re omega^2 below
      * (factor f_max 2 pi)^2, sorted by Re omega^2 (rigid modes included).
      * SLEPc EPS Krylov-Schur, shift-and-invert at -(2 pi f_t)^2 with MUMPS;
-     * GHEP when @p symmetric (then phi is M-normalised), GNHEP otherwise.
+     * GHEP when @p symmetric (then phi is M-normalised; the number of modes
+     * is counted by count_eigenvalues_below() first and
+     * BandOptions::initial_nev is not used), GNHEP otherwise.
      * Of a complex pair only the member with Im omega^2 > 0 is returned.
      * Matrices n x n, M in kg, K in N/m.
      * @throws std::runtime_error if SLEPc fails or cannot cover the band.
