@@ -77,6 +77,14 @@ namespace squeal
           MPI_IN_PLACE, A.data(), A.size(), MPI_DOUBLE, MPI_SUM, comm);
       }
 
+      Eigen::VectorXd
+      column_norms(const Eigen::MatrixXd &B, MPI_Comm comm)
+      {
+        Eigen::MatrixXd squares = B.colwise().squaredNorm();
+        sum_over_ranks(squares, comm);
+        return squares.row(0).transpose().cwiseSqrt();
+      }
+
       namespace
       {
         // A PETSc dense matrix over the local rows of B (column-major,

@@ -26,6 +26,13 @@ namespace squeal
       sum_over_ranks(Eigen::MatrixXd &A, MPI_Comm comm);
 
       /**
+       * The 2-norms of the columns of a dense n x m block of which @p B
+       * holds the locally owned rows (summed over the ranks of @p comm).
+       */
+      Eigen::VectorXd
+      column_norms(const Eigen::MatrixXd &B, MPI_Comm comm);
+
+      /**
        * A B for a sparse n x n matrix A and the locally owned rows of a
        * dense n x m block B, as the local rows of the result.
        * @throws std::runtime_error if PETSc fails.

@@ -544,7 +544,7 @@ namespace squeal
     {
       const auto          start = std::chrono::steady_clock::now();
       const PointMatrices A(model, point);
-      const PETScMatrix  &M = A.M, &C = A.C, &K = A.K, &K_s = A.K_s;
+      const PETScMatrix  &M = A.M, &K_s = A.K_s;
       const double        w_t    = 2. * numbers::PI * band.target_frequency;
       const auto          square = [](const double f) {
         return std::pow(2. * numbers::PI * f, 2);
@@ -714,12 +714,10 @@ namespace squeal
                                       A,
                                       multiply(M, blocks.back()));
               // unit columns: the iterates grow like 1 / |omega^2 - w^2|
-              Eigen::RowVectorXd norms = Y.colwise().squaredNorm();
-              Eigen::MatrixXd    sq    = norms;
-              internal::sum_over_ranks(sq, s.comm);
+              const Eigen::VectorXd norms = internal::column_norms(Y, s.comm);
               for (int j = 0; j < Y.cols(); ++j)
-                if (sq(0, j) > 0.)
-                  Y.col(j) /= std::sqrt(sq(0, j));
+                if (norms[j] > 0.)
+                  Y.col(j) /= norms[j];
               blocks.push_back(std::move(Y));
             }
           r.solve_seconds += seconds_since(t_solve);

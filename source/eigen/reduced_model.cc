@@ -89,14 +89,13 @@ namespace squeal
           const auto responses = [&](const PETScMatrix     &A,
                                      const Eigen::MatrixXd &X,
                                      std::vector<bool>     &alive) {
-            Eigen::MatrixXd F     = multiply(A, X);
-            Eigen::MatrixXd norms = F.colwise().squaredNorm();
-            sum_over_ranks(norms, comm);
+            Eigen::MatrixXd       F     = multiply(A, X);
+            const Eigen::VectorXd norms = internal::column_norms(F, comm);
             for (int j = 0; j < m; ++j)
               {
-                alive[j] = alive[j] && norms(0, j) > 0.;
+                alive[j] = alive[j] && norms[j] > 0.;
                 if (alive[j])
-                  F.col(j) /= std::sqrt(norms(0, j));
+                  F.col(j) /= norms[j];
                 else
                   F.col(j).setZero();
               }
