@@ -9,7 +9,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 packages=(libdeal.ii-dev libeigen3-dev numdiff python3-matplotlib python3-numpy
           openmpi-bin libopenmpi-dev cmake make g++ libopenblas0-pthread
           libopencv-dev libopencv-contrib-dev libfftw3-dev libgmsh-dev
-          libvtk9-dev clang-format)
+          libvtk9-dev zlib1g-dev clang-format)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -8,6 +8,8 @@
 # file, the run must refuse to replace it, and the marker must survive.
 # With SELF_INCLUDE, the input is a file at that path that includes itself;
 # with PIPE, a named pipe at that path (opening it would block).
+# With INSIDE, the input is INSIDE/case.prm writing into INSIDE with
+# Overwrite = true, and it must survive.
 if(SELF_INCLUDE)
   file(WRITE "${SELF_INCLUDE}" "include ${SELF_INCLUDE}\n")
   set(INPUT "${SELF_INCLUDE}")
@@ -16,6 +18,12 @@ if(PIPE)
   file(REMOVE "${PIPE}")
   execute_process(COMMAND mkfifo "${PIPE}")
   set(INPUT "${PIPE}")
+endif()
+if(INSIDE)
+  file(REMOVE_RECURSE "${INSIDE}")
+  set(INPUT "${INSIDE}/case.prm")
+  file(WRITE "${INPUT}" "subsection Output\n  set Directory = ${INSIDE}\n"
+    "  set Overwrite = true\nend\n")
 endif()
 if(EXISTING)
   file(REMOVE_RECURSE "${EXISTING}")
@@ -46,6 +54,9 @@ string(REGEX MATCHALL "\n" lines "${err}")
 list(LENGTH lines n_lines)
 if(n_lines GREATER 6 OR err MATCHES "Stacktrace|PETSC ERROR")
   message(FATAL_ERROR "the error is not one clear message")
+endif()
+if(INSIDE AND NOT EXISTS "${INPUT}")
+  message(FATAL_ERROR "the run deleted its own input")
 endif()
 if(EXISTING AND NOT EXISTS "${EXISTING}/earlier_result.txt")
   message(FATAL_ERROR "an earlier result was destroyed")

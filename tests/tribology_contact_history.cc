@@ -176,6 +176,60 @@ main(int argc, char **argv)
     h,
     [](hid_t f) { H5Adelete(f, "sampling_rate"); },
     "missing root attribute sampling_rate");
+  expect_error(
+    "sampling rate of 4000 values",
+    h,
+    [](hid_t f) {
+      H5Adelete(f, "sampling_rate");
+      const std::vector<double> rates(4000, 1e5);
+      H5LTset_attribute_double(f, "/", "sampling_rate", rates.data(), 4000);
+    },
+    "root attribute sampling_rate must hold one number");
+  expect_error(
+    "float status",
+    h,
+    [](hid_t f) {
+      std::vector<double> flat(25 * 10000, 1.5);
+      H5Ldelete(f, "/status", H5P_DEFAULT);
+      const hsize_t dims[2] = {25, 10000};
+      H5LTmake_dataset_double(f, "/status", 2, dims, flat.data());
+    },
+    "dataset /status must hold integers");
+  expect_error(
+    "decreasing time",
+    h,
+    [&](hid_t f) {
+      std::vector<double> t(h.time.rbegin(), h.time.rend());
+      H5Ldelete(f, "/time", H5P_DEFAULT);
+      const hsize_t n = t.size();
+      H5LTmake_dataset_double(f, "/time", 1, &n, t.data());
+    },
+    "dataset /time must increase: sample 1");
+  expect_error(
+    "radial sliding direction",
+    h,
+    [&](hid_t f) {
+      H5LTset_attribute_double(
+        f, "/", "sliding_direction", h.radial_direction.data(), 3);
+    },
+    "sliding_direction and radial_direction must be orthogonal");
+  expect_error(
+    "1e11 samples",
+    h,
+    [](hid_t f) {
+      // a chunked dataset without storage: its shape alone is huge
+      H5Ldelete(f, "/time", H5P_DEFAULT);
+      const hsize_t n = 100000000000ull, chunk = 1024;
+      const hid_t   space = H5Screate_simple(1, &n, nullptr);
+      const hid_t   plist = H5Pcreate(H5P_DATASET_CREATE);
+      H5Pset_chunk(plist, 1, &chunk);
+      const hid_t d = H5Dcreate2(
+        f, "/time", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+      H5Dclose(d);
+      H5Pclose(plist);
+      H5Sclose(space);
+    },
+    "25 nodes x 100000000000 samples need 1.8e+05 GB to read");
   {
     std::ofstream("not_hdf5.h5") << "plain text, not HDF5\n";
     std::string message;

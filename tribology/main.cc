@@ -67,6 +67,15 @@ main(int argc, char **argv)
       squeal::tribology::TribologyAnalysis analysis(prm, handler);
       analysis.run();
     }
+  catch (const std::bad_alloc &)
+    {
+      std::cerr << "squeal-tribology: error: out of memory (std::bad_alloc): "
+                   "the contact history, the images or the correlation grid "
+                   "need more than this machine has; use fewer samples, "
+                   "smaller images or a coarser Correlation/Cell size"
+                << std::endl;
+      return 1;
+    }
   catch (const std::exception &e)
     {
       std::cerr << "squeal-tribology: error: " << e.what() << std::endl;

@@ -31,6 +31,7 @@
 #include <limits>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 namespace squeal
 {
@@ -196,7 +197,7 @@ namespace squeal
       work_dir =
         io::partial_directory(prm.output.directory, prm.output.overwrite);
       io::fresh_directory(work_dir, "images");
-      std::ofstream out(fs::path(work_dir) / "parameters.prm");
+      io::OutputFile out(fs::path(work_dir) / "parameters.prm");
       handler.print_parameters(out, ParameterHandler::PRM);
 
       if (prm.history.file == "synthetic")
@@ -471,7 +472,7 @@ namespace squeal
             surf.image.convertTo(u8, CV_8U, 255.);
             if (!cv::imwrite(png.string(), u8))
               throw std::runtime_error("cannot write " + png.string());
-            std::ofstream side(fs::path(png).replace_extension(".prm"));
+            io::OutputFile side(fs::path(png).replace_extension(".prm"));
             side << std::setprecision(17) << "# synthetic field of view\n"
                  << "set Pixel size = " << pixel << "\n"
                  << "set Placement = affine\n"
@@ -500,83 +501,104 @@ namespace squeal
           resolve(prm.base_directory, prm.images.sidecar_folder);
       for (const std::string &file : image_files)
         {
-          ImageResult r;
-          r.file                    = file;
-          const std::string sidecar = sidecar_of(file, folder);
-          if (!fs::exists(sidecar))
-            throw std::runtime_error(
-              "image '" + file + "' has no sidecar '" + sidecar +
-              "' (pixel size and placement on the pad face)");
-          const cv::Mat img = load_grey_image(file);
-          r.placement       = read_image_placement(sidecar, img);
-          if (!r.placement.reference_image.empty())
+          // OpenCV's and the allocator's failures named with the image
+          try
             {
-              // Refine: reference pixels -> image pixels by ECC, starting
-              // from the two sidecars' placements.
-              const cv::Mat ref = load_grey_image(r.placement.reference_image);
-              const ImagePlacement rp = read_image_placement(
-                sidecar_of(r.placement.reference_image, folder), ref);
-              r.placement = refine_placement(img, r.placement, ref, rp);
-              std::cout
-                << "  " << fs::path(file).filename().string()
-                << ": placement refined by ECC against "
-                << fs::path(r.placement.reference_image).filename().string()
-                << std::endl;
+              ImageResult r;
+              r.file                    = file;
+              const std::string sidecar = sidecar_of(file, folder);
+              if (!fs::exists(sidecar))
+                throw std::runtime_error(
+                  "image '" + file + "' has no sidecar '" + sidecar +
+                  "' (pixel size and placement on the pad face)");
+              const cv::Mat img = load_grey_image(file);
+              r.placement       = read_image_placement(sidecar, img);
+              if (!r.placement.reference_image.empty())
+                {
+                  // Refine: reference pixels -> image pixels by ECC, starting
+                  // from the two sidecars' placements.
+                  const cv::Mat ref =
+                    load_grey_image(r.placement.reference_image);
+                  const ImagePlacement rp = read_image_placement(
+                    sidecar_of(r.placement.reference_image, folder), ref);
+                  r.placement = refine_placement(img, r.placement, ref, rp);
+                  std::cout
+                    << "  " << fs::path(file).filename().string()
+                    << ": placement refined by ECC against "
+                    << fs::path(r.placement.reference_image).filename().string()
+                    << std::endl;
+                }
+              r.exfoliations =
+                detect_exfoliations(img, prm.images.exfoliations);
+              cv::Mat exclude;
+              // the ridge filter answers up to about its largest scale outside
+              // a blob's edge
+              const int grow =
+                cvCeil(*std::max_element(prm.images.cracks.scales.begin(),
+                                         prm.images.cracks.scales.end())) +
+                2;
+              cv::dilate(r.exfoliations.mask,
+                         exclude,
+                         cv::getStructuringElement(cv::MORPH_ELLIPSE,
+                                                   cv::Size(2 * grow + 1,
+                                                            2 * grow + 1)));
+              r.cracks = detect_cracks(img, prm.images.cracks, exclude);
+              const double px2 =
+                r.placement.pixel_size * r.placement.pixel_size;
+              for (double a : r.exfoliations.areas)
+                {
+                  const double m2 = a * px2;
+                  if (m2 < prm.images.micro_max_area)
+                    {
+                      ++r.micro;
+                      r.micro_area += m2;
+                    }
+                  else if (m2 > prm.images.macro_min_area)
+                    {
+                      ++r.macro;
+                      r.macro_area += m2;
+                    }
+                  else
+                    {
+                      ++r.meso;
+                      r.meso_area += m2;
+                    }
+                }
+              const double area_mm2 = img.total() * px2 * 1e6;
+              std::cout << "  " << fs::path(file).filename().string() << ": "
+                        << img.cols << " x " << img.rows << " px at "
+                        << r.placement.pixel_size * 1e6 << " um/px; "
+                        << r.cracks.lengths.size() << " cracks, "
+                        << r.cracks.total_length * r.placement.pixel_size * 1e3
+                        << " mm, L_A = "
+                        << r.cracks.total_length * r.placement.pixel_size *
+                             1e3 / area_mm2
+                        << " mm/mm^2; exfoliated " << std::setprecision(3)
+                        << 100. * r.exfoliations.area_fraction << " % ("
+                        << r.micro << " micro, " << r.meso << " meso, "
+                        << r.macro << " macro)" << std::setprecision(6)
+                        << std::endl;
+              write_overlay((fs::path(work_dir) / "images" /
+                             (fs::path(file).stem().string() + "_overlay.png"))
+                              .string(),
+                            img,
+                            r.cracks,
+                            r.exfoliations);
+              images.push_back(std::move(r));
             }
-          r.exfoliations = detect_exfoliations(img, prm.images.exfoliations);
-          cv::Mat exclude;
-          // the ridge filter answers up to about its largest scale outside
-          // a blob's edge
-          const int grow =
-            cvCeil(*std::max_element(prm.images.cracks.scales.begin(),
-                                     prm.images.cracks.scales.end())) +
-            2;
-          cv::dilate(r.exfoliations.mask,
-                     exclude,
-                     cv::getStructuringElement(cv::MORPH_ELLIPSE,
-                                               cv::Size(2 * grow + 1,
-                                                        2 * grow + 1)));
-          r.cracks         = detect_cracks(img, prm.images.cracks, exclude);
-          const double px2 = r.placement.pixel_size * r.placement.pixel_size;
-          for (double a : r.exfoliations.areas)
+          catch (const cv::Exception &e)
             {
-              const double m2 = a * px2;
-              if (m2 < prm.images.micro_max_area)
-                {
-                  ++r.micro;
-                  r.micro_area += m2;
-                }
-              else if (m2 > prm.images.macro_min_area)
-                {
-                  ++r.macro;
-                  r.macro_area += m2;
-                }
-              else
-                {
-                  ++r.meso;
-                  r.meso_area += m2;
-                }
+              throw std::runtime_error("image '" + file +
+                                       "': OpenCV failed in " + e.func + ": " +
+                                       e.err);
             }
-          const double area_mm2 = img.total() * px2 * 1e6;
-          std::cout << "  " << fs::path(file).filename().string() << ": "
-                    << img.cols << " x " << img.rows << " px at "
-                    << r.placement.pixel_size * 1e6 << " um/px; "
-                    << r.cracks.lengths.size() << " cracks, "
-                    << r.cracks.total_length * r.placement.pixel_size * 1e3
-                    << " mm, L_A = "
-                    << r.cracks.total_length * r.placement.pixel_size * 1e3 /
-                         area_mm2
-                    << " mm/mm^2; exfoliated " << std::setprecision(3)
-                    << 100. * r.exfoliations.area_fraction << " % (" << r.micro
-                    << " micro, " << r.meso << " meso, " << r.macro << " macro)"
-                    << std::setprecision(6) << std::endl;
-          write_overlay((fs::path(work_dir) / "images" /
-                         (fs::path(file).stem().string() + "_overlay.png"))
-                          .string(),
-                        img,
-                        r.cracks,
-                        r.exfoliations);
-          images.push_back(std::move(r));
+          catch (const std::bad_alloc &)
+            {
+              throw std::runtime_error(
+                "image '" + file +
+                "': out of memory; the image is too large for this machine "
+                "(crop or downscale it, and adjust its Pixel size)");
+            }
         }
     }
 
@@ -689,6 +711,40 @@ namespace squeal
         if (std::isfinite(crack_density.values[c]))
           cracked.values[c] = crack_density.values[c] > threshold ? 1. : 0.;
 
+      // A map that does not vary over the paired cells has no ranks: the
+      // statistics would be NaN and read as "no link".
+      for (const auto &[map, name, advice] :
+           {std::tuple(&log_damage,
+                       "fatigue-damage map",
+                       "the contact history may be too short or the "
+                       "load too steady for any damage to differ"),
+            std::tuple(&crack_density,
+                       "crack-density map",
+                       "no crack was found in the images, or every "
+                       "cell holds the same; check Images/Crack contrast "
+                       "and Crack scales")})
+        {
+          double      lo = std::numeric_limits<double>::max(), hi = -lo;
+          std::size_t n = 0;
+          for (std::size_t c = 0; c < map->values.size(); ++c)
+            if (std::isfinite(log_damage.values[c]) &&
+                std::isfinite(crack_density.values[c]))
+              {
+                lo = std::min(lo, map->values[c]);
+                hi = std::max(hi, map->values[c]);
+                ++n;
+              }
+          if (n > 0 && !(hi > lo))
+            {
+              std::ostringstream m;
+              m << "correlation: the " << name << " is " << lo << " in all "
+                << n
+                << " cells that are both in contact and imaged; a rank "
+                   "correlation needs it to vary ("
+                << advice << ")";
+              throw std::runtime_error(m.str());
+            }
+        }
       const auto sp = [](const std::vector<double> &a,
                          const std::vector<double> &b) {
         return spearman(a, b);

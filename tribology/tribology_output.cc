@@ -63,7 +63,7 @@ namespace squeal
                                      dealii::DataOut<2>::type_cell_data);
           }
         data_out.build_patches();
-        std::ofstream vtu(file);
+        io::OutputFile vtu(file);
         data_out.write_vtu(vtu);
         if (!vtu)
           throw std::runtime_error("cannot write " + file.string());
@@ -78,7 +78,7 @@ namespace squeal
         [&](const std::string                         &name,
             const std::string                         &header,
             const std::function<void(std::ostream &)> &body) {
-          std::ofstream out(dir / name);
+          io::OutputFile out(dir / name);
           out << std::setprecision(10) << header << '\n';
           body(out);
           if (!out)
@@ -202,7 +202,7 @@ namespace squeal
                       for (const auto &[f, t] : roc)
                         o << f << ',' << t << '\n';
                     });
-          std::ofstream(dir / "verdict.txt") << verdict << '\n';
+          io::OutputFile(dir / "verdict.txt") << verdict << '\n';
         }
 
       // ParaView: the maps as cell data on the pad-face grid.
@@ -215,6 +215,7 @@ namespace squeal
                        {&crack_count, "cracks_per_mm2"},
                        {&exfoliated, "exfoliated_fraction"}});
 
+      io::check_writes(MPI_COMM_SELF);
       io::publish_directory(work_dir, prm.output.directory);
       std::cout << "Results in " << prm.output.directory << std::endl;
     }

@@ -4,6 +4,7 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <squeal/io/output_directory.h>
 #include <squeal/parameters/parameters.h>
 #include <squeal/tribology/tribology_analysis.h>
 
@@ -419,6 +420,15 @@ namespace squeal
           throw std::runtime_error("in parameter file '" + filename +
                                    "': " + e.what());
         }
+      // an output folder must not hold what the run reads
+      const auto input = [&](const std::string &file) {
+        if (!file.empty() && file != "synthetic")
+          io::register_input(
+            (fs::path(base_directory) / fs::path(file)).string());
+      };
+      input(history.file);
+      for (const std::string &image : images.files)
+        input(image);
     }
   } // namespace tribology
 } // namespace squeal

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -55,6 +56,41 @@ namespace squeal
         s << std::setprecision(10) << x;
         return s.str();
       }
+
+      // the last SIGINT or SIGTERM received during a time loop (0: none)
+      volatile std::sig_atomic_t stop_signal = 0;
+
+      extern "C" void
+      note_stop_signal(const int number)
+      {
+        stop_signal = number;
+      }
+
+      // While it lives, SIGINT and SIGTERM are noted (stop_signal) instead
+      // of ending the process, so that the time loop can write a checkpoint
+      // and stop; the previous handlers come back afterwards.
+      class StopSignals
+      {
+      public:
+        StopSignals()
+        {
+          stop_signal = 0;
+          old_int     = std::signal(SIGINT, note_stop_signal);
+          old_term    = std::signal(SIGTERM, note_stop_signal);
+        }
+        ~StopSignals()
+        {
+          std::signal(SIGINT, old_int);
+          std::signal(SIGTERM, old_term);
+        }
+        StopSignals(const StopSignals &) = delete;
+        StopSignals &
+        operator=(const StopSignals &) = delete;
+
+      private:
+        void (*old_int)(int);
+        void (*old_term)(int);
+      };
     } // namespace
 
     BrakingAnalysis::BrakingAnalysis(
@@ -249,6 +285,7 @@ namespace squeal
                                               comm,
                                               {"vtu", "checkpoint"});
         }
+      parameters_crc = parameters_checksum();
     }
 
     // The stiffness product of the time loop (Transient/Stiffness product):
@@ -561,9 +598,16 @@ namespace squeal
         pcout << "; resumed at step " << first_step << " (t = " << d.time()
               << " s)";
       pcout << std::endl;
-      Vector<double> f(model.n_dofs());
-      const auto     start       = std::chrono::steady_clock::now();
-      auto           last_report = start;
+      Vector<double>    f(model.n_dofs());
+      const auto        start       = std::chrono::steady_clock::now();
+      auto              last_report = start;
+      const StopSignals signals;
+      const bool        parallel = Utilities::MPI::n_mpi_processes(comm) > 1;
+      const auto        wall_now = [&]() {
+        return wall_before + std::chrono::duration<double>(
+                               std::chrono::steady_clock::now() - start)
+                               .count();
+      };
       for (unsigned int k = first_step; k < n_steps; ++k)
         {
           {
@@ -587,11 +631,24 @@ namespace squeal
               (k + 1) % tr.checkpoint_interval == 0 && k + 1 < n_steps)
             {
               TimerOutput::Scope ts(timer, "checkpoints");
-              write_checkpoint(k + 1,
-                               wall_before +
-                                 std::chrono::duration<double>(
-                                   std::chrono::steady_clock::now() - start)
-                                   .count());
+              write_checkpoint(k + 1, wall_now());
+            }
+          // SIGINT/SIGTERM: every rank stops after the same step, with a
+          // checkpoint to resume from
+          const int stop = parallel ?
+                             Utilities::MPI::max(int(stop_signal), comm) :
+                             int(stop_signal);
+          if (stop != 0 && k + 1 < n_steps)
+            {
+              if (last_checkpoint != k + 1)
+                write_checkpoint(k + 1, wall_now());
+              throw std::runtime_error(
+                std::string(stop == SIGINT ? "SIGINT" : "SIGTERM") +
+                " received: the run stopped at t = " + as_text(d.time()) +
+                " s (step " + std::to_string(k + 1) + " of " +
+                std::to_string(n_steps) +
+                ") and saved its state; continue it with squeal --resume " +
+                io::normalised(prm.output.directory));
             }
           const auto now = std::chrono::steady_clock::now();
           if (std::chrono::duration<double>(now - last_report).count() > 10. ||
@@ -639,7 +696,7 @@ namespace squeal
       assemble_load();
       solve();
       output_results();
-      MPI_Barrier(comm);
+      io::check_writes(comm);
       if (Utilities::MPI::this_mpi_process(comm) == 0)
         {
           fs::remove_all(fs::path(work_dir) / "checkpoint");

@@ -2,12 +2,19 @@
 // appended to binary files and the integrator's state written through a
 // temporary file and a rename, and the resume that reads them back.
 
+#include <deal.II/base/mpi.h>
+
 #include <squeal/analyses/braking.h>
+#include <squeal/io/output_directory.h>
+
+#include <zlib.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <stdexcept>
 
 namespace squeal
@@ -19,7 +26,26 @@ namespace squeal
 
     namespace
     {
-      const char checkpoint_tag[] = "squeal braking checkpoint 1";
+      const char checkpoint_tag[] = "squeal braking checkpoint 2";
+
+      // zlib's CRC-32 of @p bytes continued from @p crc
+      std::uint32_t
+      crc32_of(const std::string &bytes, const std::uint32_t crc = 0)
+      {
+        return static_cast<std::uint32_t>(
+          crc32(crc,
+                reinterpret_cast<const Bytef *>(bytes.data()),
+                static_cast<uInt>(bytes.size())));
+      }
+
+      // the whole of @p path ("" if it cannot be read)
+      std::string
+      contents(const fs::path &path)
+      {
+        std::ifstream in(path, std::ios::binary);
+        return {std::istreambuf_iterator<char>(in),
+                std::istreambuf_iterator<char>()};
+      }
 
       template <typename T>
       void
@@ -65,6 +91,12 @@ namespace squeal
       }
     } // namespace
 
+    std::uint32_t
+    BrakingAnalysis::parameters_checksum() const
+    {
+      return crc32_of(contents(fs::path(work_dir) / "parameters.prm"));
+    }
+
     // A checkpoint: the samples and history samples taken since the last
     // one are appended to checkpoint/samples.bin and history.bin, then the
     // state (step, counters, snapshot lists, the integrator) goes to
@@ -81,13 +113,10 @@ namespace squeal
       if (rank == 0)
         {
           // every rank holds the same samples; rank 0 keeps them
-          std::ofstream f(dir / "samples.bin",
-                          std::ios::binary | std::ios::app);
+          std::ostringstream f, h;
           for (std::size_t i = saved_samples; i < samples.size(); ++i)
             f.write(reinterpret_cast<const char *>(samples[i].data()),
                     sizeof(samples[i]));
-          std::ofstream h(dir / "history.bin",
-                          std::ios::binary | std::ios::app);
           for (std::size_t i = saved_history; i < history.time.size(); ++i)
             {
               put(h, history.time[i]);
@@ -100,10 +129,19 @@ namespace squeal
                   put<std::int32_t>(h, history.status[j][i]);
                 }
             }
-          if (!f || !h)
-            throw std::runtime_error("could not append to the checkpoint "
-                                     "files in '" +
-                                     dir.string() + "'");
+          for (const auto &[name, bytes, crc] :
+               {std::tuple(dir / "samples.bin", f.str(), &samples_crc),
+                std::tuple(dir / "history.bin", h.str(), &history_crc)})
+            {
+              io::OutputFile out(name, std::ios::binary | std::ios::app);
+              out.write(bytes.data(), bytes.size());
+              out.close();
+              if (!out)
+                throw std::runtime_error("could not append to the checkpoint "
+                                         "file '" +
+                                         name.string() + "'");
+              *crc = crc32_of(bytes, *crc);
+            }
         }
       saved_samples         = samples.size();
       saved_history         = history.time.size();
@@ -112,8 +150,8 @@ namespace squeal
                       std::to_string(rank) + ".bin");
       };
       {
-        std::ofstream f(state_file(next_step), std::ios::binary);
-        f.write(checkpoint_tag, sizeof(checkpoint_tag));
+        // the state, then its CRC-32: a damaged byte fails the resume
+        std::ostringstream f;
         put<std::uint64_t>(f, model.n_dofs());
         put<std::uint64_t>(f, n_s);
         put<std::uint64_t>(f, next_step);
@@ -121,12 +159,21 @@ namespace squeal
         put<std::uint64_t>(f, n_frames);
         put<std::uint64_t>(f, saved_samples);
         put<std::uint64_t>(f, saved_history);
+        put(f, samples_crc);
+        put(f, history_crc);
+        put(f, parameters_crc);
         put(f, wall);
         put_list(f, snapshots);
         put_list(f, frames);
         put_list(f, faces);
         dynamics->save(f);
-        if (!f)
+        const std::string body = f.str();
+        io::OutputFile    out(state_file(next_step), std::ios::binary);
+        out.write(checkpoint_tag, sizeof(checkpoint_tag));
+        out.write(body.data(), body.size());
+        put(out, crc32_of(body));
+        out.close();
+        if (!out)
           throw std::runtime_error("could not write the checkpoint '" +
                                    state_file(next_step).string() + "'");
       }
@@ -136,7 +183,7 @@ namespace squeal
       if (rank == 0)
         {
           {
-            std::ofstream f(dir / "latest.tmp");
+            io::OutputFile f(dir / "latest.tmp");
             f << next_step << ' ' << Utilities::MPI::n_mpi_processes(comm)
               << '\n';
           }
@@ -150,6 +197,28 @@ namespace squeal
 
     std::pair<unsigned int, double>
     BrakingAnalysis::read_checkpoint()
+    {
+      // Collective: a check that fails on one rank (its own state file)
+      // stops every rank with that rank's message.
+      std::pair<unsigned int, double> step_wall;
+      std::string                     failure;
+      try
+        {
+          step_wall = read_checkpoint_files();
+        }
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+        }
+      for (const std::string &message :
+           Utilities::MPI::all_gather(comm, failure))
+        if (!message.empty())
+          throw std::runtime_error(message);
+      return step_wall;
+    }
+
+    std::pair<unsigned int, double>
+    BrakingAnalysis::read_checkpoint_files()
     {
       const fs::path dir   = fs::path(work_dir) / "checkpoint";
       std::uint64_t  step  = 0;
@@ -170,14 +239,26 @@ namespace squeal
          ("state." + std::to_string(step) + "." +
           std::to_string(Utilities::MPI::this_mpi_process(comm)) + ".bin"))
           .string();
-      last_checkpoint = step;
-      std::ifstream f(name, std::ios::binary);
-      char          tag[sizeof(checkpoint_tag)] = {};
-      f.read(tag, sizeof(tag));
-      if (!f || std::string(tag) != checkpoint_tag)
+      last_checkpoint        = step;
+      const std::string raw  = contents(name);
+      const std::size_t head = sizeof(checkpoint_tag);
+      if (raw.size() < head + sizeof(std::uint32_t) ||
+          raw.compare(0, head, checkpoint_tag, head) != 0)
         throw std::runtime_error("'" + name +
-                                 "' is not a checkpoint of a "
-                                 "squeal braking run");
+                                 "' is not a checkpoint of this version of "
+                                 "squeal's braking run");
+      const std::string body =
+        raw.substr(head, raw.size() - head - sizeof(std::uint32_t));
+      std::uint32_t stored = 0;
+      std::copy_n(raw.data() + raw.size() - sizeof(stored),
+                  sizeof(stored),
+                  reinterpret_cast<char *>(&stored));
+      if (crc32_of(body) != stored)
+        throw std::runtime_error(
+          "the checkpoint '" + name +
+          "' fails its CRC-32 check (damaged bytes); it cannot be resumed, "
+          "start the run again");
+      std::istringstream f(body);
       const unsigned int n_s     = mortar.n_slave();
       const auto         n_dofs  = get<std::uint64_t>(f);
       const auto         n_nodes = get<std::uint64_t>(f);
@@ -193,10 +274,19 @@ namespace squeal
       n_frames             = get<std::uint64_t>(f);
       saved_samples        = get<std::uint64_t>(f);
       saved_history        = get<std::uint64_t>(f);
+      samples_crc          = get<std::uint32_t>(f);
+      history_crc          = get<std::uint32_t>(f);
+      const auto   started = get<std::uint32_t>(f);
       const double wall    = get<double>(f);
-      snapshots            = get_list(f);
-      frames               = get_list(f);
-      faces                = get_list(f);
+      if (f && started != parameters_crc)
+        throw std::runtime_error(
+          "'" + work_dir +
+          "/parameters.prm' differs from the parameters the run started "
+          "with (CRC-32); a resumed run must continue the same model: undo "
+          "the edit, or start a new run with --overwrite");
+      snapshots = get_list(f);
+      frames    = get_list(f);
+      faces     = get_list(f);
       if (!f)
         throw std::runtime_error("the checkpoint '" + name + "' is short");
       try
@@ -225,7 +315,15 @@ namespace squeal
             throw std::runtime_error("the checkpoint file '" + path.string() +
                                      "' is shorter than its state says");
           if (Utilities::MPI::this_mpi_process(comm) == 0)
-            fs::resize_file(path, bytes);
+            {
+              fs::resize_file(path, bytes);
+              if (crc32_of(contents(path)) !=
+                  (file == "samples.bin" ? samples_crc : history_crc))
+                throw std::runtime_error(
+                  "the checkpoint file '" + path.string() +
+                  "' fails its CRC-32 check (damaged bytes); it cannot be "
+                  "resumed, start the run again");
+            }
         }
       samples.resize(saved_samples);
       {

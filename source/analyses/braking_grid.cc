@@ -95,11 +95,12 @@ namespace squeal
                                  "(see the messages above); nothing written");
       if (root)
         {
-          std::ofstream out(fs::path(work) / "stability_table.csv");
+          io::OutputFile out(fs::path(work) / "stability_table.csv");
           out << table.str();
         }
       pcout << "\nStability table (" << points.size() << " braking runs):\n"
             << table.str();
+      io::check_writes(comm);
       if (root)
         io::publish_directory(work, prm.output.directory);
       MPI_Barrier(comm);

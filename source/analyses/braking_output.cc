@@ -120,8 +120,7 @@ namespace squeal
         const VonMises von_mises(*model.scene, model.scene->nominal_point());
         out.add_data_vector(u, von_mises);
         out.build_patches(model.mapping, 1);
-        out.write_vtu_in_parallel((fs::path(work_dir) / "vtu" / name).string(),
-                                  comm);
+        io::write_vtu(out, (fs::path(work_dir) / "vtu" / name).string(), comm);
       }
       (series == "transient" ? snapshots : frames)
         .emplace_back(d.time(), "vtu/" + name);
@@ -154,7 +153,7 @@ namespace squeal
         {
           // the whole pad face from the replicated contact state
           face.build_patches(model.mapping, 1);
-          std::ofstream f(fs::path(work_dir) / "vtu" / face_name);
+          io::OutputFile f(fs::path(work_dir) / "vtu" / face_name);
           face.write_vtu(f);
         }
       faces.emplace_back(d.time(), "vtu/" + face_name);
@@ -260,7 +259,8 @@ namespace squeal
           result.leading_min_over_mean = p_lo / p_mean;
           result.leading_max_over_mean = p_hi / p_mean;
         }
-      // Unstable: the envelope grew tenfold (then saturated or not), or its
+      // Unstable: the envelope grew tenfold and stayed up (saturated into a
+      // limit cycle, overshoot or not, or still growing), or its
       // fitted exponential at least doubled it over the fit (a slow growth,
       // or one from a large seed); stable: it decays, or stays within a
       // factor of 2.
@@ -288,7 +288,7 @@ namespace squeal
       const fs::path   dir(work_dir);
       const GrowthFit &g = result.growth;
       {
-        std::ofstream out(dir / "forces.csv");
+        io::OutputFile out(dir / "forces.csv");
         out << "time_s,normal_force_N,tangential_force_N,radial_force_N,"
                "contact_area_m2,n_stick,n_slip,n_separated\n"
             << std::setprecision(std::numeric_limits<double>::max_digits10);
@@ -297,7 +297,7 @@ namespace squeal
               << r[4] << ',' << r[5] << ',' << r[6] << ',' << r[7] << '\n';
       }
       {
-        std::ofstream out(dir / "probes.csv");
+        io::OutputFile out(dir / "probes.csv");
         out << "# probe: pad leading edge at (" << probe_point[0] << ", "
             << probe_point[1] << ", " << probe_point[2]
             << ") m; sliding direction (" << sliding[0] << ", " << sliding[1]
@@ -314,7 +314,7 @@ namespace squeal
           }
       }
       {
-        std::ofstream out(dir / "spectrum.csv");
+        io::OutputFile out(dir / "spectrum.csv");
         out
           << "# Welch PSD of the probe's acceleration and velocity along "
              "the sliding direction, t >= "
@@ -326,14 +326,14 @@ namespace squeal
               << velocity_spectrum.psd[k] << '\n';
       }
       {
-        std::ofstream out(dir / "envelope.csv");
+        io::OutputFile out(dir / "envelope.csv");
         out << "time_s,envelope_m_per_s\n" << std::setprecision(10);
         for (unsigned int k = 0; k < g.time.size(); ++k)
           out << g.time[k] << ',' << g.envelope[k] << '\n';
       }
       io::write_contact_history((dir / "contact_history.h5").string(), history);
       {
-        std::ofstream out(dir / "summary.csv");
+        io::OutputFile out(dir / "summary.csv");
         out << "quantity,value\n"
             << std::setprecision(10) << "verdict," << result.verdict;
         // the scene's named parameters at this run
@@ -347,11 +347,11 @@ namespace squeal
             << result.modal_growth.fit_start << "\nmodal_fit_end_s,"
             << result.modal_growth.fit_end << "\nlimit_cycle_amplitude_m_per_s,"
             << g.final_amplitude << "\nlimit_cycle," << (g.limit_cycle ? 1 : 0)
-            << "\nseparated," << (result.separated ? 1 : 0)
-            << "\nleading_edge_p_min_over_mean," << result.leading_min_over_mean
-            << "\nleading_edge_p_max_over_mean," << result.leading_max_over_mean
-            << "\nn_dofs," << result.n_dofs << "\ntime_step_s,"
-            << result.time_step << "\ncritical_time_step_s,"
+            << "\nsaturation_time_s," << g.saturation_time << "\nseparated,"
+            << (result.separated ? 1 : 0) << "\nleading_edge_p_min_over_mean,"
+            << result.leading_min_over_mean << "\nleading_edge_p_max_over_mean,"
+            << result.leading_max_over_mean << "\nn_dofs," << result.n_dofs
+            << "\ntime_step_s," << result.time_step << "\ncritical_time_step_s,"
             << result.critical_time_step << "\nn_steps," << result.n_steps
             << "\nwall_time_s," << result.wall_time << "\nsteps_per_s,"
             << result.n_steps / result.wall_time << "\n";
@@ -361,7 +361,7 @@ namespace squeal
             std::make_pair("animation.pvd", &frames),
             std::make_pair("contact.pvd", &faces)})
         {
-          std::ofstream pvd(dir / file);
+          io::OutputFile pvd(dir / file);
           DataOutBase::write_pvd_record(pvd, *list);
         }
     }
@@ -391,8 +391,12 @@ namespace squeal
             << result.modal_growth.fit_start * 1e3 << "-"
             << result.modal_growth.fit_end * 1e3 << " ms), final amplitude "
             << g.final_amplitude
-            << " m/s (probe velocity along the sliding direction)"
-            << "\n  pad separated after the ramp: "
+            << " m/s (probe velocity along the sliding direction)";
+      if (g.limit_cycle)
+        pcout << "\n  grew from " << g.fit_start * 1e3
+              << " ms and saturated at " << g.saturation_time * 1e3
+              << " ms into a limit cycle of " << g.final_amplitude << " m/s";
+      pcout << "\n  pad separated after the ramp: "
             << (result.separated ? "yes" : "no") << "; leading-edge pressure "
             << result.leading_min_over_mean << " to "
             << result.leading_max_over_mean << " x the mean\n  "

@@ -13,6 +13,7 @@
 #include <squeal/analyses/cea.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/mac.h>
+#include <squeal/io/output_directory.h>
 
 #include <algorithm>
 #include <array>
@@ -795,9 +796,9 @@ namespace squeal
         write_mode_estimates(per_mode, cycle, pairs, estimate, check);
       if (Utilities::MPI::this_mpi_process(comm) == 0)
         {
-          std::ofstream(work_dir + "/adaptive_cycles.csv") << table.str();
+          io::OutputFile(work_dir + "/adaptive_cycles.csv") << table.str();
           if (by_tolerance)
-            std::ofstream(work_dir + "/adaptive_modes.csv") << per_mode.str();
+            io::OutputFile(work_dir + "/adaptive_modes.csv") << per_mode.str();
         }
       // the last cycle solved the sweep's first point on the final mesh
       first_point_full = std::move(pairs);

@@ -12,6 +12,7 @@
 #include <squeal/analyses/cea.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/mac.h>
+#include <squeal/io/output_directory.h>
 
 #include <algorithm>
 #include <array>
@@ -261,7 +262,7 @@ namespace squeal
                                        pcout) == 0)
           break;
       if (Utilities::MPI::this_mpi_process(comm) == 0)
-        std::ofstream(work_dir + "/contact_refinement.csv") << csv.str();
+        io::OutputFile(work_dir + "/contact_refinement.csv") << csv.str();
       pcout << "Mesh after the contact refinement: "
             << model->triangulation.n_active_cells() << " cells, "
             << model->n_dofs() << " DoFs" << std::endl;

@@ -13,6 +13,7 @@
 #include <squeal/analyses/cea.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/mac.h>
+#include <squeal/io/output_directory.h>
 
 #include <algorithm>
 #include <array>
@@ -138,7 +139,7 @@ namespace squeal
       pcout << " of the squared sum" << std::setprecision(6) << std::endl;
       if (Utilities::MPI::this_mpi_process(comm) == 0)
         {
-          std::ofstream csv(work_dir + "/mesh_error.csv");
+          io::OutputFile csv(work_dir + "/mesh_error.csv");
           csv << "body,cells,share_of_squared_indicator\n";
           for (const scene::Body &b : bodies)
             csv << b.name << ',' << by_body[b.id].second << ','
@@ -149,7 +150,7 @@ namespace squeal
       data_out.add_data_vector(indicator, "error_indicator");
       data_out.add_data_vector(body, "body");
       data_out.build_patches();
-      data_out.write_vtu_in_parallel(work_dir + "/mesh_error.vtu", comm);
+      io::write_vtu(data_out, work_dir + "/mesh_error.vtu", comm);
     }
   } // namespace analyses
 } // namespace squeal

@@ -60,8 +60,27 @@ namespace squeal
       data_out.build_patches(model->mapping,
                              model->fe.degree,
                              DataOut<3>::curved_inner_cells);
-      return data_out.write_vtu_with_pvtu_record(
-        work_dir + "/modes/", name, 0, comm, 0, 0);
+      // one piece per rank and the record on rank 0 (deal.II's names),
+      // through checked files
+      const std::string  stem  = name + "_0";
+      const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
+      const auto         piece = [&](const unsigned int r) {
+        return stem + "." + std::to_string(r) + ".vtu";
+      };
+      {
+        io::OutputFile vtu(work_dir + "/modes/" + piece(rank));
+        data_out.write_vtu(vtu);
+      }
+      if (rank == 0)
+        {
+          std::vector<std::string> pieces;
+          for (unsigned int r = 0; r < Utilities::MPI::n_mpi_processes(comm);
+               ++r)
+            pieces.push_back(piece(r));
+          io::OutputFile pvtu(work_dir + "/modes/" + stem + ".pvtu");
+          data_out.write_pvtu_record(pvtu, pieces);
+        }
+      return stem + ".pvtu";
     }
 
 
@@ -72,7 +91,7 @@ namespace squeal
       const bool         root = Utilities::MPI::this_mpi_process(comm) == 0;
       if (root)
         {
-          std::ofstream csv(work_dir + "/eigenvalues.csv");
+          io::OutputFile csv(work_dir + "/eigenvalues.csv");
           // the two swept parameters, named by the scene, then the modes
           const auto &scene  = *model->scene;
           const auto  first  = scene.parameter(prm.sweep.first.parameter);
@@ -80,7 +99,7 @@ namespace squeal
           csv << "point," << first.column() << ',' << second.column()
               << ",mode,re_per_s,freq_Hz,zeta,unstable,track\n"
               << std::setprecision(12);
-          std::ofstream res(work_dir + "/eigenvalue_residuals.csv");
+          io::OutputFile res(work_dir + "/eigenvalue_residuals.csv");
           res << "point,mode,relative_residual,refined\n"
               << std::setprecision(6);
           for (const auto &m : modes)
@@ -93,14 +112,14 @@ namespace squeal
               res << m.point << ',' << m.mode << ',' << m.residual << ','
                   << (m.refined ? 1 : 0) << '\n';
             }
-          std::ofstream axes(work_dir + "/sweep_axes.csv");
+          io::OutputFile axes(work_dir + "/sweep_axes.csv");
           axes << "axis,parameter,column,log\n";
           for (const auto *axis : {&prm.sweep.first, &prm.sweep.second})
             axes << (axis == &prm.sweep.first ? "first," : "second,")
                  << axis->parameter << ','
                  << scene.parameter(axis->parameter).column() << ','
                  << (axis->log_scale() ? 1 : 0) << '\n';
-          std::ofstream reg(work_dir + "/unstable_regions.csv");
+          io::OutputFile reg(work_dir + "/unstable_regions.csv");
           // e.g. pad_on_disc.mu,pad.E_min_Pa,pad.E_max_Pa,...
           reg << second.column() << ',' << first.column("_min") << ','
               << first.column("_max")
@@ -112,7 +131,7 @@ namespace squeal
                 << r.track << '\n';
           if (!unverified.empty())
             {
-              std::ofstream note(work_dir + "/UNVERIFIED.txt");
+              io::OutputFile note(work_dir + "/UNVERIFIED.txt");
               note << "These results failed verification "
                       "(Eigensolver/Allow unverified results = true):\n";
               for (const auto &u : unverified)
@@ -123,7 +142,7 @@ namespace squeal
               }))
             {
               // the full solver's counts and convergence at every point
-              std::ofstream fs(work_dir + "/full_solver.csv");
+              io::OutputFile fs(work_dir + "/full_solver.csv");
               fs
                 << "point,modes,symmetric_in_band,symmetric_in_basis,"
                    "basis_size,rounds,largest_residual,seconds,peak_memory_MB\n"
@@ -140,7 +159,7 @@ namespace squeal
             }
           if (!check_rows.empty())
             {
-              std::ofstream chk(work_dir + "/check_full.csv");
+              io::OutputFile chk(work_dir + "/check_full.csv");
               chk << "point," << first.column() << ',' << second.column()
                   << ",full_re_per_s,full_freq_Hz,"
                      "reduced_re_per_s,reduced_freq_Hz,freq_rel_error,"
@@ -233,12 +252,12 @@ namespace squeal
       write_error_indicator();
       if (root)
         {
-          std::ofstream pvd(work_dir + "/modes.pvd");
+          io::OutputFile pvd(work_dir + "/modes.pvd");
           DataOutBase::write_pvd_record(pvd, records);
-          std::ofstream(work_dir + "/mode_participation.csv")
+          io::OutputFile(work_dir + "/mode_participation.csv")
             << participation.str();
         }
-      MPI_Barrier(comm);
+      io::check_writes(comm);
       if (root)
         io::publish_directory(work_dir, output_target());
       MPI_Barrier(comm);

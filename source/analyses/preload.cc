@@ -189,7 +189,7 @@ namespace squeal
       across_t = mortar.nodal_pressure(across_t);
       if (root)
         {
-          std::ofstream out(dir / csv_name);
+          io::OutputFile out(dir / csv_name);
           out << "x_m,y_m,z_m,p_N_Pa,t_T1_Pa,t_T2_Pa,gap_m,status\n"
               << std::setprecision(10);
           for (unsigned int j = 0; j < n_s; ++j)
@@ -218,7 +218,7 @@ namespace squeal
       if (root)
         {
           out.build_patches(model.mapping, model.fe.degree);
-          std::ofstream vtu(dir / vtu_name);
+          io::OutputFile vtu(dir / vtu_name);
           out.write_vtu(vtu);
         }
     }
@@ -237,11 +237,11 @@ namespace squeal
         }
       const fs::path dir(work_dir);
       {
-        std::ofstream pvd(dir / "contact.pvd");
+        io::OutputFile pvd(dir / "contact.pvd");
         DataOutBase::write_pvd_record(pvd, steps);
       }
       {
-        std::ofstream out(dir / "preload_summary.txt");
+        io::OutputFile out(dir / "preload_summary.txt");
         out << std::setprecision(8) << "normal_force_N " << state.normal_force
             << "\nfriction_force_N " << state.tangential_force
             << "\nspring_force_N " << spring_reaction << "\ncontact_area_m2 "
@@ -265,8 +265,9 @@ namespace squeal
         std::vector<DataComponentInterpretation::DataComponentInterpretation>(
           3, DataComponentInterpretation::component_is_part_of_vector));
       out.build_patches(model.mapping, 1);
-      out.write_vtu_in_parallel(
-        (fs::path(work_dir) / "displacement.vtu").string(), comm);
+      io::write_vtu(out,
+                    (fs::path(work_dir) / "displacement.vtu").string(),
+                    comm);
     }
 
     void
@@ -276,7 +277,7 @@ namespace squeal
       assemble_load();
       solve();
       output_results();
-      MPI_Barrier(comm);
+      io::check_writes(comm);
       if (Utilities::MPI::this_mpi_process(comm) == 0)
         io::publish_directory(work_dir, prm.output.directory);
       MPI_Barrier(comm);

@@ -8,8 +8,12 @@
 #include <squeal/io/mesh_file.h>
 #include <squeal/scene/scene.h>
 
+#include <unistd.h>
+
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
 
 namespace squeal
@@ -18,6 +22,60 @@ namespace squeal
   {
     using namespace dealii;
     namespace fs = std::filesystem;
+
+    namespace
+    {
+      // What can be known of a run's size before any mesh is built: the
+      // sweep's point count, and for the built-in scenes a lower bound of
+      // the DoFs (3 p^3 per cell of the coarse disc, pad and support) and of
+      // the memory (the sparse matrices alone: 3 (2p + 1)^3 entries of 12
+      // bytes per row, three matrices for a CEA, one otherwise).
+      // @throws std::runtime_error if the sweep has more than a million
+      // points or the lower bound exceeds this machine's memory.
+      void
+      check_run_size(const parameters::AllParameters &prm)
+      {
+        const double n_points = double(prm.sweep.first.values.size()) *
+                                prm.sweep.second.values.size();
+        if (prm.scene.analysis != "preload" && n_points > 1e6)
+          throw std::runtime_error(
+            "Sweep: " + std::to_string(prm.sweep.first.values.size()) + " x " +
+            std::to_string(prm.sweep.second.values.size()) +
+            " points is more than the 1 000 000 a run can hold; sweep "
+            "coarser or in parts");
+        if (prm.scene.type == "mesh file")
+          return;
+        const auto  &m = prm.mesh;
+        const double cells =
+          double(m.disc_cells_circumference) * m.disc_cells_radial *
+            m.disc_cells_thickness +
+          (prm.scene.type == "tribobrake" ?
+             double(m.pad_cells_side) * m.pad_cells_side *
+               (m.pad_cells_thickness + m.support_cells_length) :
+             0.);
+        const double p     = m.fe_degree;
+        const double dofs  = 3. * cells * p * p * p;
+        const double bytes = dofs * 3. * std::pow(2. * p + 1., 3) * 12. *
+                             (prm.scene.analysis == "cea" ||
+                                  prm.scene.analysis == "preloaded cea" ?
+                                3. :
+                                1.);
+        const double memory =
+          double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+        if (bytes > memory)
+          {
+            std::ostringstream m_;
+            m_.precision(3);
+            m_ << "Mesh: " << cells << " cells of degree " << m.fe_degree
+               << " give at least " << dofs << " DoFs, whose matrices alone "
+               << "need at least " << bytes / 1e9 << " GB; this machine has "
+               << memory / 1e9
+               << " GB (use fewer cells or a lower degree, or mpirun on "
+                  "more machines)";
+            throw std::runtime_error(m_.str());
+          }
+      }
+    } // namespace
 
     const char usage[] =
       "usage: squeal [--overwrite] FILE.prm | --validate FILE.prm | "
@@ -149,7 +207,10 @@ namespace squeal
                                 prm.scene.analysis,
                                 prm.scene.analysis == "braking" &&
                                   prm.transient.initial_perturbation > 0.);
-      // the sweep's parameter names and ranges against the scene
+      // the scene's values and the sweep's names and values in range, the
+      // run's size against the machine
+      scene::check_parameter_ranges(*scene);
+      check_run_size(prm);
       if (prm.scene.analysis != "preload" &&
           (prm.scene.analysis != "braking" || prm.transient.grid))
         scene::sweep_points(*scene, prm.sweep);
@@ -209,10 +270,16 @@ namespace squeal
                  const bool                       resume,
                  MPI_Comm                         comm)
     {
-      // the sweep against the scene's named parameters, before any output
-      if (prm.scene.analysis != "preload" &&
-          (prm.scene.analysis != "braking" || prm.transient.grid))
-        scene::sweep_points(*scene::make_scene(prm), prm.sweep);
+      // the scene's values and the sweep against its named parameters,
+      // before any output
+      {
+        check_run_size(prm);
+        const auto scene = scene::make_scene(prm);
+        scene::check_parameter_ranges(*scene);
+        if (prm.scene.analysis != "preload" &&
+            (prm.scene.analysis != "braking" || prm.transient.grid))
+          scene::sweep_points(*scene, prm.sweep);
+      }
       std::string failure;
       if (prm.scene.analysis == "braking" && prm.transient.grid)
         {

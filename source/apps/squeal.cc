@@ -47,6 +47,17 @@ main(int argc, char **argv)
       else
         analyses::run_analysis(prm, handler, cl.resume, MPI_COMM_WORLD);
     }
+  catch (const std::bad_alloc &)
+    {
+      std::cerr << "squeal: error: out of memory on rank "
+                << Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)
+                << " (std::bad_alloc); the model, the sweep or the band needs "
+                   "more than this machine has: use fewer cells, a lower "
+                   "degree, fewer sweep points or a narrower band, or mpirun "
+                   "on more machines"
+                << std::endl;
+      return 1;
+    }
   catch (const std::exception &e)
     {
       if (root)

@@ -10,6 +10,8 @@
 #include <hdf5.h>
 #include <hdf5_hl.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -64,7 +66,10 @@ namespace squeal
       }
 
       std::vector<hsize_t>
-      dataset_shape(hid_t f, const std::string &file, const char *name)
+      dataset_shape(hid_t              f,
+                    const std::string &file,
+                    const char        *name,
+                    H5T_class_t       *klass = nullptr)
       {
         if (H5LTfind_dataset(f, name + 1) <= 0)
           fail(file, std::string("missing dataset ") + name);
@@ -78,6 +83,8 @@ namespace squeal
         std::size_t          size;
         if (H5LTget_dataset_info(f, name, dims.data(), &cls, &size) < 0)
           fail(file, std::string("cannot read the shape of dataset ") + name);
+        if (klass != nullptr)
+          *klass = cls;
         return dims;
       }
 
@@ -119,22 +126,44 @@ namespace squeal
         return rows;
       }
 
-      std::array<double, 3>
-      read_vector_attribute(hid_t f, const std::string &file, const char *name)
+      // the root attribute @p name, which must hold @p n numbers
+      std::vector<double>
+      read_attribute(hid_t              f,
+                     const std::string &file,
+                     const char        *name,
+                     const hsize_t      n)
       {
         if (H5LTfind_attribute(f, name) <= 0)
           fail(file, std::string("missing root attribute ") + name);
         hsize_t     dims = 0;
         H5T_class_t cls;
         std::size_t size;
-        if (H5LTget_attribute_info(f, "/", name, &dims, &cls, &size) < 0 ||
-            dims != 3)
+        int         rank = -1;
+        if (H5LTget_attribute_ndims(f, "/", name, &rank) < 0 || rank > 1 ||
+            H5LTget_attribute_info(f, "/", name, &dims, &cls, &size) < 0 ||
+            (rank == 0 ? 1 : dims) != n ||
+            (cls != H5T_FLOAT && cls != H5T_INTEGER))
           fail(file,
-               std::string("root attribute ") + name + " must hold 3 numbers");
-        std::array<double, 3> v;
+               std::string("root attribute ") + name + " must hold " +
+                 (n == 1 ? "one number" : std::to_string(n) + " numbers"));
+        std::vector<double> v(n);
         if (H5LTget_attribute_double(f, "/", name, v.data()) < 0)
           fail(file, std::string("cannot read root attribute ") + name);
         return v;
+      }
+
+      std::array<double, 3>
+      read_vector_attribute(hid_t f, const std::string &file, const char *name)
+      {
+        const std::vector<double> v = read_attribute(f, file, name, 3);
+        return {{v[0], v[1], v[2]}};
+      }
+
+      // the machine's physical memory [bytes]
+      double
+      physical_memory()
+      {
+        return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
       }
     } // namespace
 
@@ -163,9 +192,21 @@ namespace squeal
           if (!std::isfinite(c))
             bad("dataset /coordinates: non-finite value at node " +
                 std::to_string(i));
-      for (double t : time)
-        if (!std::isfinite(t))
+      for (std::size_t k = 0; k < time.size(); ++k)
+        if (!std::isfinite(time[k]))
           bad("dataset /time: non-finite value");
+        else if (k > 0 && !(time[k] > time[k - 1]))
+          bad("dataset /time must increase: sample " + std::to_string(k) +
+              " (t = " + std::to_string(time[k]) + " s) is not after sample " +
+              std::to_string(k - 1) + " (t = " + std::to_string(time[k - 1]) +
+              " s)");
+      {
+        const auto &s = sliding_direction, &r = radial_direction;
+        if (!(std::abs(s[0] * r[0] + s[1] * r[1] + s[2] * r[2]) < 1e-6))
+          bad("root attributes sliding_direction and radial_direction must "
+              "be orthogonal (the sliding is tangential, along the disc's "
+              "rotation)");
+      }
       const std::pair<const char *, const std::vector<std::vector<double>> *>
         fields[] = {{"/p_N", &p_N},
                     {"/t_T1", &t_T1},
@@ -304,9 +345,29 @@ namespace squeal
         dataset_shape(f.id, filename, "/time");
       if (t_shape.size() != 1)
         fail(filename, "dataset /time must be a vector");
-      h.time = read_doubles(f.id, filename, "/time", t_shape);
       const std::vector<hsize_t> field{n_nodes, t_shape[0]};
-      h.p_N = split_rows(read_doubles(f.id, filename, "/p_N", field), n_nodes);
+      {
+        // five n_nodes x n_samples fields, each read flat then split
+        const double need = 2. * double(n_nodes) * double(t_shape[0]) *
+                            (4 * sizeof(double) + sizeof(int));
+        if (need > 0.8 * physical_memory())
+          {
+            char text[160];
+            std::snprintf(text,
+                          sizeof(text),
+                          " samples need %.3g GB to read; this machine has "
+                          "%.3g GB",
+                          need / 1e9,
+                          physical_memory() / 1e9);
+            fail(filename,
+                 std::to_string(n_nodes) + " nodes x " +
+                   std::to_string(t_shape[0]) + text +
+                   " (write fewer samples: a lower sampling rate or a "
+                   "shorter run)");
+          }
+      }
+      h.time = read_doubles(f.id, filename, "/time", t_shape);
+      h.p_N  = split_rows(read_doubles(f.id, filename, "/p_N", field), n_nodes);
       h.t_T1 =
         split_rows(read_doubles(f.id, filename, "/t_T1", field), n_nodes);
       h.t_T2 =
@@ -314,8 +375,13 @@ namespace squeal
       h.slip_velocity =
         split_rows(read_doubles(f.id, filename, "/slip_velocity", field),
                    n_nodes);
-      if (dataset_shape(f.id, filename, "/status") != field)
+      H5T_class_t status_class = H5T_NO_CLASS;
+      if (dataset_shape(f.id, filename, "/status", &status_class) != field)
         fail(filename, "dataset /status must be n_nodes x n_samples like /p_N");
+      if (status_class != H5T_INTEGER)
+        fail(filename,
+             "dataset /status must hold integers (0 separated, 1 stick, 2 "
+             "slip)");
       std::vector<int> status(n_nodes * t_shape[0]);
       if (H5LTread_dataset_int(f.id, "/status", status.data()) < 0)
         fail(filename, "cannot read dataset /status");
@@ -324,11 +390,8 @@ namespace squeal
         h.status[i].assign(status.begin() + i * t_shape[0],
                            status.begin() + (i + 1) * t_shape[0]);
 
-      if (H5LTfind_attribute(f.id, "sampling_rate") <= 0)
-        fail(filename, "missing root attribute sampling_rate");
-      if (H5LTget_attribute_double(
-            f.id, "/", "sampling_rate", &h.sampling_rate) < 0)
-        fail(filename, "cannot read root attribute sampling_rate");
+      h.sampling_rate =
+        read_attribute(f.id, filename, "sampling_rate", 1).front();
       h.sliding_direction =
         read_vector_attribute(f.id, filename, "sliding_direction");
       h.radial_direction =

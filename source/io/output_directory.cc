@@ -5,12 +5,157 @@
 
 #include <squeal/io/output_directory.h>
 
+#include <algorithm>
 #include <fstream>
 
 namespace squeal
 {
   namespace io
   {
+    namespace
+    {
+      namespace fs = std::filesystem;
+
+      // the inputs register_input() recorded, as absolute canonical paths
+      std::vector<fs::path> &
+      inputs()
+      {
+        static std::vector<fs::path> list;
+        return list;
+      }
+
+      fs::path
+      resolved(const std::string &path)
+      {
+        return fs::weakly_canonical(fs::absolute(path));
+      }
+
+      // true if @p inner is @p outer or lies below it (both resolved)
+      bool
+      contains(const fs::path &outer, const fs::path &inner)
+      {
+        const auto mismatch =
+          std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end());
+        return mismatch.first == outer.end();
+      }
+    } // namespace
+
+    namespace
+    {
+      // the files OutputFile could not write, since the last check_writes()
+      std::vector<std::string> &
+      failed_writes()
+      {
+        static std::vector<std::string> list;
+        return list;
+      }
+    } // namespace
+
+    OutputFile::OutputFile(const std::filesystem::path &path,
+                           const std::ios::openmode     mode)
+      : std::ofstream(path, mode)
+      , name(path.string())
+    {}
+
+    OutputFile::~OutputFile()
+    {
+      if (is_open())
+        std::ofstream::close();
+      record();
+    }
+
+    void
+    OutputFile::record()
+    {
+      if (!good() && !recorded)
+        {
+          failed_writes().push_back(name);
+          recorded = true;
+        }
+    }
+
+    void
+    OutputFile::close()
+    {
+      if (is_open())
+        std::ofstream::close();
+      record();
+      if (!good())
+        throw std::runtime_error("could not write '" + name +
+                                 "' (a full disk or a file-size limit?)");
+    }
+
+    void
+    write_vtu(const dealii::DataOutInterface<3, 3> &out,
+              const std::string                    &file,
+              MPI_Comm                              comm)
+    {
+      if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1)
+        out.write_vtu_in_parallel(file, comm);
+      else
+        {
+          OutputFile vtu(file);
+          out.write_vtu(vtu);
+        }
+    }
+
+    void
+    check_writes(MPI_Comm comm)
+    {
+      std::string mine;
+      if (!failed_writes().empty())
+        mine = failed_writes().front() +
+               (failed_writes().size() > 1 ?
+                  " and " + std::to_string(failed_writes().size() - 1) +
+                    " other file(s)" :
+                  std::string());
+      failed_writes().clear();
+      int mpi = 0;
+      MPI_Initialized(&mpi);
+      const std::vector<std::string> all =
+        mpi ? dealii::Utilities::MPI::all_gather(comm, mine) :
+              std::vector<std::string>{mine};
+      for (unsigned int rank = 0; rank < all.size(); ++rank)
+        if (!all[rank].empty())
+          throw std::runtime_error(
+            "could not write '" + all[rank] + "' (rank " +
+            std::to_string(rank) +
+            "; a full disk or a file-size limit?): the results are "
+            "incomplete and were not published");
+    }
+
+    void
+    register_input(const std::string &file)
+    {
+      if (!file.empty())
+        inputs().push_back(resolved(file));
+    }
+
+    std::string
+    partial_directory(const std::string &directory, const bool overwrite)
+    {
+      const std::string target = normalised(directory);
+      const fs::path    full   = resolved(target);
+      if (target.empty() || contains(full, resolved(fs::current_path())))
+        throw std::runtime_error(
+          "output directory '" + directory +
+          "' is the working directory or contains it; a run replaces its "
+          "output folder, so give it a folder of its own");
+      for (const fs::path &input : inputs())
+        if (contains(full, input))
+          throw std::runtime_error(
+            "output directory '" + directory + "' contains the input '" +
+            input.string() +
+            "'; a run replaces its output folder, so give it a folder of its "
+            "own");
+      if (fs::exists(target) && !overwrite)
+        throw std::runtime_error(
+          "output directory '" + directory +
+          "' exists; set Output/Overwrite = true or pass --overwrite to "
+          "replace it");
+      return target + ".partial";
+    }
+
     std::string
     start_work_directory(const std::string              &directory,
                          const bool                      overwrite,
@@ -24,6 +169,16 @@ namespace squeal
         {
           try
             {
+              // a stopped braking run's progress is not thrown away unasked
+              if (std::filesystem::is_regular_file(
+                    std::filesystem::path(partial) / "checkpoint" / "latest") &&
+                  !overwrite)
+                throw std::runtime_error(
+                  "'" + partial +
+                  "' holds the checkpoint of a stopped braking run; continue "
+                  "it with squeal --resume " +
+                  normalised(directory) +
+                  ", or pass --overwrite to discard it");
               fresh_directory(partial);
               for (const std::string &sub : subs)
                 std::filesystem::create_directories(

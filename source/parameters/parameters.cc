@@ -7,6 +7,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include <squeal/io/output_directory.h>
 #include <squeal/parameters/parameters.h>
 
 #include "entries.h"
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -117,47 +119,118 @@ namespace squeal
 
     namespace
     {
-      // The INCLUDE chain of FILE (paths as deal.II opens them: from the
-      // working directory): one that comes back to a file on it would
-      // recurse without end in ParameterHandler.
-      void
-      check_includes(const std::string &file, std::vector<std::string> &chain)
+      // @p text without leading and trailing blanks, inner runs of blanks as
+      // one space (how ParameterHandler compares names)
+      std::string
+      collapsed(const std::string &text)
       {
-        chain.push_back(file);
+        std::istringstream words(text);
+        std::string        out, w;
+        while (words >> w)
+          out += (out.empty() ? "" : " ") + w;
+        return out;
+      }
+
+      // What a scan of a parameter file and its INCLUDEs has seen: the
+      // INCLUDE chain (paths as deal.II opens them, from the working
+      // directory), the open subsections and where each entry was set.
+      struct FileScan
+      {
+        std::vector<std::string> chain;
+        std::vector<std::string> sections;
+        /// "A/B/entry" -> (file, "'file', line n") where it was set last
+        std::map<std::string, std::pair<std::string, std::string>> set_at;
+        unsigned int n_entries = 0;
+      };
+
+      // Scans @p file for what ParameterHandler does not refuse: an INCLUDE
+      // that comes back to a file on the chain (it would recurse without
+      // end) and an entry set twice in one file or overridden by a file it
+      // includes (the last would win silently). A file's own entries may
+      // override those of a file it included before them.
+      void
+      scan_file(const std::string &file, FileScan &scan)
+      {
+        scan.chain.push_back(file);
+        io::register_input(file);
         std::ifstream in(file);
-        std::string   line;
-        for (unsigned int number = 1; std::getline(in, line); ++number)
+        std::string   physical;
+        unsigned int  number = 0;
+        while (std::getline(in, physical))
           {
-            std::istringstream words(line);
-            std::string        word;
-            if (!(words >> word) ||
-                (word != "include" && word != "INCLUDE" && word != "Include"))
-              continue;
-            std::string target;
-            std::getline(words >> std::ws, target);
-            while (!target.empty() &&
-                   std::isspace(static_cast<unsigned char>(target.back())))
-              target.pop_back();
-            const auto same = [&](const std::string &other) {
-              std::error_code ec;
-              return std::filesystem::equivalent(target, other, ec);
-            };
-            if (std::any_of(chain.begin(), chain.end(), same) ||
-                chain.size() > 32)
+            ++number;
+            const unsigned int first = number;
+            std::string        line  = physical;
+            // continuation lines end in a backslash
+            while (!line.empty() && line.back() == '\\' &&
+                   std::getline(in, physical))
               {
-                std::string path;
-                for (const auto &f : chain)
-                  path += "'" + f + "' -> ";
-                throw std::runtime_error(
-                  "in parameter file '" + file + "', line " +
-                  std::to_string(number) + ": INCLUDE '" + target +
-                  "' comes back to a file that includes it (" + path + "'" +
-                  target + "'); remove the cycle");
+                line.pop_back();
+                line += physical;
+                ++number;
               }
-            if (std::filesystem::is_regular_file(target))
-              check_includes(target, chain);
+            line                 = collapsed(line.substr(0, line.find('#')));
+            const auto  word_end = line.find(' ');
+            std::string word     = line.substr(0, word_end);
+            std::transform(word.begin(), word.end(), word.begin(), ::tolower);
+            const std::string rest =
+              word_end == std::string::npos ? "" : line.substr(word_end + 1);
+            const std::string where =
+              "'" + file + "', line " + std::to_string(first);
+            if (word == "subsection")
+              scan.sections.push_back(rest);
+            else if (word == "end" && !scan.sections.empty())
+              scan.sections.pop_back();
+            else if (word == "set")
+              {
+                std::string key;
+                for (const auto &section : scan.sections)
+                  key += section + "/";
+                key += collapsed(rest.substr(0, rest.find('=')));
+                ++scan.n_entries;
+                // A file may override what a file it includes sets (the
+                // later value wins, as in ParameterHandler); an entry set
+                // twice in one file, or set and then overridden by a file
+                // it includes, is a mistake.
+                const std::string here = scan.chain.back();
+                const auto [it, fresh] =
+                  scan.set_at.emplace(key, std::make_pair(here, where));
+                if (!fresh)
+                  {
+                    if (std::find(scan.chain.begin(),
+                                  scan.chain.end(),
+                                  it->second.first) != scan.chain.end())
+                      throw std::runtime_error(
+                        "in parameter file " + where + ": " + key +
+                        " is set a second time (first in " + it->second.second +
+                        "); keep one of them");
+                    it->second = {here, where};
+                  }
+              }
+            else if (word == "include")
+              {
+                const std::string &target = rest;
+                const auto         same   = [&](const std::string &other) {
+                  std::error_code ec;
+                  return std::filesystem::equivalent(target, other, ec);
+                };
+                if (std::any_of(scan.chain.begin(), scan.chain.end(), same) ||
+                    scan.chain.size() > 32)
+                  {
+                    std::string path;
+                    for (const auto &f : scan.chain)
+                      path += "'" + f + "' -> ";
+                    throw std::runtime_error(
+                      "in parameter file '" + file + "', line " +
+                      std::to_string(first) + ": INCLUDE '" + target +
+                      "' comes back to a file that includes it (" + path + "'" +
+                      target + "'); remove the cycle");
+                  }
+                if (std::filesystem::is_regular_file(target))
+                  scan_file(target, scan);
+              }
           }
-        chain.pop_back();
+        scan.chain.pop_back();
       }
     } // namespace
 
@@ -173,10 +246,8 @@ namespace squeal
       if (!std::ifstream(filename))
         throw std::runtime_error("cannot open parameter file '" + filename +
                                  "'");
-      {
-        std::vector<std::string> chain;
-        check_includes(filename, chain);
-      }
+      FileScan scan;
+      scan_file(filename, scan);
       try
         {
           prm.parse_input(filename, "", false, true);
@@ -194,6 +265,11 @@ namespace squeal
           throw std::runtime_error("in parameter file '" + filename +
                                    "': " + folded);
         }
+      if (scan.n_entries == 0)
+        throw std::runtime_error(
+          "parameter file '" + filename +
+          "' sets no entry; a run needs at least the analysis' own entries "
+          "(squeal --print-parameters lists every entry with its default)");
     }
 
     void
@@ -226,6 +302,7 @@ namespace squeal
           prm.leave_subsection();
           prm.leave_subsection();
         }
+      io::register_input(mesh);
     }
   } // namespace parameters
 } // namespace squeal

@@ -22,7 +22,6 @@ namespace squeal
   {
     using namespace dealii;
     using internal::check;
-    using internal::positive;
     using internal::str;
     void
     MeshFileScene::declare_parameters(ParameterHandler &prm) const
@@ -200,30 +199,33 @@ namespace squeal
     Geometry::declare_parameters(ParameterHandler &prm) const
     {
       prm.enter_subsection("Geometry");
+      // a length a brake can have: 10 micrometres to 10 m (0 gives a
+      // singular mesh, 1e308 overflows the mapping)
+      const Patterns::Double length(1e-5, 10.);
       prm.declare_entry("Disc inner radius",
                         str(disc_inner_radius),
-                        positive,
+                        length,
                         "Radius of the clamped inner face of the disc [m].");
       prm.declare_entry("Disc outer radius",
                         str(disc_outer_radius),
-                        positive,
+                        length,
                         "Outer radius of the disc [m].");
       prm.declare_entry("Disc thickness",
                         str(disc_thickness),
-                        positive,
+                        length,
                         "Disc thickness [m]; the disc occupies -h <= z <= 0.");
       prm.declare_entry("Pad size",
                         str(pad_size),
-                        positive,
+                        length,
                         "Edge of the cubic pad [m].");
       prm.declare_entry("Pad radius",
                         str(pad_radius),
-                        positive,
+                        length,
                         "Radius of the pad face centre on the disc [m] (the "
                         "thesis does not state it).");
       prm.declare_entry("Support length",
                         str(support_length),
-                        positive,
+                        length,
                         "Length of the support beam along the disc axis [m].");
       prm.leave_subsection();
     }

@@ -89,7 +89,15 @@ namespace squeal
     std::vector<NamedParameter>
     Scene::parameters() const
     {
-      const double                big = std::numeric_limits<double>::max();
+      // Physical ranges: every value a scene or a sweep gives must lie in
+      // them (sweep_points checks); beyond them a run loses all digits
+      // (1e300 Pa) or fails deep in LAPACK.
+      const double E_max     = 1e13; // [Pa] 8x diamond's modulus
+      const double rho_max   = 1e5;  // [kg/m^3] 4x osmium's density
+      const double alpha_max = 1e5;  // [1/s] damping ratio 8 at 1 kHz
+      const double beta_max  = 1e-3; // [s] damping ratio 3 at 1 kHz
+      const double k_n_max   = 1e20; // [N/m^3] 1e8 x a pad's penalty
+      const double k_max     = 1e15; // [N/m] 1e5 x a steel bar's EA/L
       std::vector<NamedParameter> list;
       for (const Body &b : bodies)
         {
@@ -98,21 +106,26 @@ namespace squeal
                           b.material.youngs_modulus,
                           0.,
                           true,
-                          big,
+                          E_max,
                           true});
           list.push_back({b.name + ".rho",
                           "kg_per_m3",
                           b.material.density,
                           0.,
                           true,
-                          big,
+                          rho_max,
                           true});
           if (b.own_damping)
             {
+              list.push_back({b.name + ".alpha",
+                              "per_s",
+                              b.alpha,
+                              0.,
+                              false,
+                              alpha_max,
+                              false});
               list.push_back(
-                {b.name + ".alpha", "per_s", b.alpha, 0., false, big, false});
-              list.push_back(
-                {b.name + ".beta", "s", b.beta, 0., false, big, false});
+                {b.name + ".beta", "s", b.beta, 0., false, beta_max, false});
             }
         }
       for (const ContactPair &c : contact_pairs)
@@ -130,16 +143,16 @@ namespace squeal
                           c.normal_stiffness,
                           0.,
                           false,
-                          big,
+                          k_n_max,
                           false});
         }
       for (const SpringSet &s : springs)
         list.push_back(
-          {s.name + ".k", "N_per_m", s.stiffness, 0., false, big, true});
+          {s.name + ".k", "N_per_m", s.stiffness, 0., false, k_max, true});
       list.push_back(
-        {"damping.alpha", "per_s", damping_alpha, 0., false, big, false});
+        {"damping.alpha", "per_s", damping_alpha, 0., false, alpha_max, false});
       list.push_back(
-        {"damping.beta", "s", damping_beta, 0., false, big, false});
+        {"damping.beta", "s", damping_beta, 0., false, beta_max, false});
       parameters::ScalarPoint unique; // throws on a repeated name
       for (const auto &p : list)
         unique.add(p.name, p.value);
@@ -213,6 +226,39 @@ namespace squeal
       return mu;
     }
 
+    namespace
+    {
+      // "" if @p v lies in @p info's range, else the range as
+      // "(must be > 0 and <= 1e+13 Pa)"
+      std::string
+      outside(const NamedParameter &info, const double v)
+      {
+        if ((info.low_open ? v > info.lowest : v >= info.lowest) &&
+            v <= info.highest)
+          return "";
+        std::ostringstream m;
+        m << "(must be " << (info.low_open ? "> " : ">= ") << info.lowest
+          << " and <= " << info.highest << (info.unit.empty() ? "" : " ")
+          << info.unit << ")";
+        return m.str();
+      }
+    } // namespace
+
+    void
+    check_parameter_ranges(const Scene &scene)
+    {
+      for (const NamedParameter &info : scene.parameters())
+        if (const std::string range = outside(info, info.value); !range.empty())
+          {
+            std::ostringstream m;
+            m << info.name << " = " << info.value << " " << info.unit
+              << " (from Materials, Damping, Interface, Springs or the mesh "
+                 "file's items) is out of range "
+              << range;
+            throw std::runtime_error(m.str());
+          }
+    }
+
     std::vector<parameters::ScalarPoint>
     sweep_points(const Scene &scene, const parameters::Sweep &sweep)
     {
@@ -228,16 +274,11 @@ namespace squeal
               "; its parameters are " + nominal.names());
           const NamedParameter info = scene.parameter(axis->parameter);
           for (const double v : axis->values)
-            if (!(info.low_open ? v > info.lowest : v >= info.lowest) ||
-                v > info.highest)
+            if (const std::string range = outside(info, v); !range.empty())
               {
                 std::ostringstream m;
                 m << entry << " values: " << v << " is out of range for "
-                  << info.name << " (must be " << (info.low_open ? "> " : ">= ")
-                  << info.lowest;
-                if (info.highest < std::numeric_limits<double>::max())
-                  m << " and <= " << info.highest;
-                m << ")";
+                  << info.name << " " << range;
                 throw std::runtime_error(m.str());
               }
         }

@@ -50,8 +50,8 @@ namespace squeal
       }
 
       // The growth fit of an envelope (g.time, g.envelope filled): final
-      // amplitude, growing / limit-cycle flags, the log-linear fit from the
-      // smallest value to half the final amplitude.
+      // amplitude, growing / limit-cycle flags, saturation time, the
+      // log-linear fit from the smallest value to half the final amplitude.
       void
       fit_envelope(GrowthFit &g)
       {
@@ -68,10 +68,29 @@ namespace squeal
         const unsigned int k_min =
           std::min_element(g.envelope.begin(), g.envelope.end()) -
           g.envelope.begin();
-        g.growing     = g.envelope[k_min] > 0. ?
-                          g.final_amplitude > 10. * g.envelope[k_min] :
-                          g.final_amplitude > 0.;
-        g.limit_cycle = g.growing && hi - lo <= 0.2 * g.final_amplitude;
+        const double smallest = g.envelope[k_min];
+        const auto   k_peak =
+          std::max_element(g.envelope.begin() + k_min, g.envelope.end());
+        const double peak = *k_peak;
+        // Growth: the envelope rose fivefold from its smallest value (at its
+        // peak: a limit cycle may settle below an overshoot) and never fell
+        // below a third of that peak afterwards (a vibration that rose and
+        // died away again, or the beat of two close modes, is not an
+        // instability).
+        g.growing = (smallest > 0. ? peak > 5. * smallest : peak > 0.) &&
+                    *std::min_element(k_peak, g.envelope.end()) >= peak / 3.;
+        // Saturated: the last 20 % flat within 20 %, or the final amplitude
+        // reached before the last 20 % (an overshoot that settles).
+        if (g.growing)
+          {
+            unsigned int k_sat = k_min;
+            while (k_sat + 1 < n_w && g.envelope[k_sat] < g.final_amplitude)
+              ++k_sat;
+            g.saturation_time = g.time[k_sat];
+            g.limit_cycle =
+              hi - lo <= 0.2 * g.final_amplitude ||
+              (k_sat < n_w - last && hi - lo <= 0.5 * g.final_amplitude);
+          }
         // the fit window
         unsigned int a = 0, b = n_w - 1;
         if (g.growing)

@@ -22,8 +22,14 @@ Runs build/squeal on the coarse TriboBrake for 6 ms and checks:
   the sparse product is refused under mpirun;
 - restart: a run killed (SIGKILL) after its first checkpoint and continued
   with `squeal --resume DIR` writes the same forces.csv and probes.csv (17
-  significant digits) as the uninterrupted run, bit for bit; --resume of a
-  finished run or of nothing is refused;
+  significant digits) as the uninterrupted run, bit for bit; before that, a
+  plain rerun into its folder is refused and leaves the checkpoint intact
+  (hash), a checkpoint with one damaged byte and an edited parameters.prm
+  are refused by --resume; --resume of a finished run or of nothing is
+  refused;
+- SIGTERM during the time loop: the run writes a checkpoint, exits non-zero
+  naming the step and publishes nothing; --resume then gives the
+  uninterrupted run's forces.csv and probes.csv bit for bit;
 - a grid (Transient/Grid) of mu = 0.3, 0.5 writes a folder per point and
   one stability table; each point runs at its own mu (F_T = mu F_N in full
   slip) and the mu = 0.5 point equals the single run (forces to 1e-12);
@@ -32,8 +38,10 @@ Runs build/squeal on the coarse TriboBrake for 6 ms and checks:
   message; a second run into the same directory is refused.
 """
 import csv
+import hashlib
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -186,6 +194,49 @@ proc.kill()
 proc.wait()
 check("a run is killed after its first checkpoint",
       os.path.exists(state) and not os.path.exists(killed))
+
+
+def digest(folder):
+    h = hashlib.sha256()
+    for root, dirs, files in sorted(os.walk(folder)):
+        dirs.sort()
+        for name in sorted(files):
+            with open(os.path.join(root, name), "rb") as fh:
+                h.update(name.encode() + fh.read())
+    return h.hexdigest()
+
+
+before = digest(killed + ".partial")
+r = subprocess.run([squeal, "killed.prm"], capture_output=True, text=True)
+check("a plain rerun over a stopped run's checkpoint is refused",
+      r.returncode != 0 and "--resume" in r.stderr, r.stderr)
+check("the refused rerun leaves the checkpoint as it was",
+      digest(killed + ".partial") == before)
+with open(state) as fh:
+    step = fh.read().split()[0]
+state_bin = os.path.join(killed + ".partial", "checkpoint", f"state.{step}.0.bin")
+with open(state_bin, "rb") as fh:
+    good = fh.read()
+damaged = bytearray(good)
+damaged[len(damaged) // 2] ^= 0x40
+with open(state_bin, "wb") as fh:
+    fh.write(damaged)
+r = subprocess.run([squeal, "--resume", "killed"], capture_output=True, text=True)
+check("--resume of a checkpoint with a damaged byte is refused",
+      r.returncode != 0 and "CRC-32" in r.stderr and not os.path.exists(killed), r.stderr)
+with open(state_bin, "wb") as fh:
+    fh.write(good)
+used = os.path.join(killed + ".partial", "parameters.prm")
+with open(used) as fh:
+    original = fh.read()
+with open(used, "w") as fh:
+    fh.write(original.replace("set Normal force", "set Normal force = 150 #", 1))
+r = subprocess.run([squeal, "--resume", "killed"], capture_output=True, text=True)
+check("--resume after parameters.prm was edited is refused",
+      r.returncode != 0 and "differs from the parameters the run started with" in r.stderr,
+      r.stderr)
+with open(used, "w") as fh:
+    fh.write(original)
 r = subprocess.run([squeal, "--resume", "killed"], capture_output=True, text=True)
 check("squeal --resume continues it", r.returncode == 0 and "resumed at step" in r.stdout,
       r.stdout[-1000:] + r.stderr)
@@ -194,6 +245,34 @@ for name in ("forces.csv", "probes.csv"):
         check(f"resumed {name} = uninterrupted {name}, bit for bit", a.read() == b.read())
 check("the checkpoint is removed at the end",
       not os.path.exists(os.path.join(killed, "checkpoint")))
+
+# SIGTERM in the time loop: a checkpoint, a clear stop, then --resume.
+termed = os.path.abspath("termed")
+for d in (termed, termed + ".partial"):
+    shutil.rmtree(d, ignore_errors=True)
+with open("termed.prm", "w") as f:
+    f.write(f"include {prm}\nsubsection Transient\n  set Checkpoint interval = 0\nend\n"
+            f"subsection Output\n  set Directory = {termed}\nend\n")
+proc = subprocess.Popen([squeal, "termed.prm"], stdout=subprocess.PIPE,
+                        stderr=subprocess.PIPE, text=True)
+for line in proc.stdout:
+    if line.startswith("Time loop"):
+        break
+time.sleep(0.5)
+proc.send_signal(signal.SIGTERM)
+_, err = proc.communicate()
+check("SIGTERM stops the run with a non-zero exit naming the step",
+      proc.returncode != 0 and "SIGTERM received" in err and "--resume" in err, err)
+check("the stopped run publishes nothing and leaves a checkpoint",
+      not os.path.exists(termed)
+      and os.path.exists(os.path.join(termed + ".partial", "checkpoint", "latest")))
+r = subprocess.run([squeal, "--resume", "termed"], capture_output=True, text=True)
+check("squeal --resume continues the SIGTERM-stopped run", r.returncode == 0, r.stderr)
+for name in ("forces.csv", "probes.csv"):
+    with open(os.path.join(out, name)) as a, open(os.path.join(termed, name)) as b:
+        check(f"SIGTERM + resume: {name} = uninterrupted {name}, bit for bit",
+              a.read() == b.read())
+
 r = subprocess.run([squeal, "--resume", "killed"], capture_output=True, text=True)
 check("--resume of a finished run is refused",
       r.returncode != 0 and "holds a finished run" in r.stderr, r.stderr)

@@ -11,16 +11,21 @@ A one-point CEA of the coarse clamped disc (a few seconds) is run with:
 - Output/Directory = `.` and `sub/..` with Overwrite = true: refused with one
   error naming the working directory; the working directory keeps every
   file (its input included);
-- Output/Directory = the working directory's parent: refused the same way.
+- Output/Directory = the working directory's parent: refused the same way;
+- a file-size limit one byte below the result's largest file (a full disk):
+  the run fails naming the file and publishes nothing.
 Exits non-zero on the first failure.
 """
 import hashlib
 import os
+import resource
 import shutil
+import signal
 import subprocess
 import sys
 
 squeal, work = sys.argv[1:3]
+work = os.path.abspath(work)
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 os.chdir(work)
@@ -124,3 +129,49 @@ for directory in [".", "sub/..", ".."]:
         fail(f"Output/Directory = {directory} changed the working directory")
     print(f"Output/Directory = {directory} with Overwrite: refused, nothing "
           "touched: ok")
+
+# A full disk, played by a file-size limit (ulimit -f) with SIGXFSZ ignored
+# so that writes fail with EFBIG instead of killing the run, on a finer disc
+# whose mode files are larger than parameters.prm: a limit one byte below
+# the largest file of its result must fail the run with one message naming a
+# file, and publish nothing. (PMIx keeps its data in a hash, not in shared
+# memory files that the limit would break.)
+os.chdir(work)
+FINE = DISC.replace("degree = 1", "degree = 2").replace(
+    "circumference = 16", "circumference = 24").replace(
+    "radial = 2", "radial = 3")
+
+
+def run_fine(directory, preexec=None):
+    with open("fine.prm", "w") as f:
+        f.write(FINE.format(directory=directory, overwrite="false"))
+    env = dict(os.environ, PMIX_MCA_gds="hash")
+    return subprocess.run([squeal, "fine.prm"], capture_output=True, text=True,
+                          preexec_fn=preexec, env=env)
+
+
+r = run_fine("sized")
+if r.returncode != 0:
+    fail(f"the fine disc failed:\n{r.stderr}")
+sizes = {os.path.join(root, name): os.path.getsize(os.path.join(root, name))
+         for root, _, files in os.walk("sized") for name in files}
+largest = max(sizes.values())
+if largest <= sizes[os.path.join("sized", "parameters.prm")]:
+    fail("parameters.prm is the largest file: the limit would test nothing new")
+
+
+def limited():
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (largest - 1, largest - 1))
+
+
+r = run_fine("full", limited)
+if r.returncode == 0:
+    fail("a run whose largest file could not be written exited 0")
+if "could not write" not in r.stderr or "not published" not in r.stderr \
+        or r.stderr.count("\n") > 2:
+    fail(f"a failed write gave an unclear error:\n{r.stderr}")
+if os.path.exists("full"):
+    fail("a run with a failed write published its folder")
+print("file-size limit one byte below the largest file: the run fails naming "
+      "the file, nothing published: ok")

@@ -16,6 +16,8 @@ Runs the whole chain and checks:
   follows the damage rank) correlates with the damage map: ROC AUC > 0.7 and
   toroidal-shift p < 0.01 (400 shifts on the 0.5 mm grid);
 - a second run into the same directory is refused and changes nothing;
+- images without a crack (a crack map without variance) fail the run with
+  one error naming the map, and nothing is published;
 - the contact_history.h5 the run wrote, read back as an input file, gives
   the same damage.csv;
 - one of the written field images with its sidecar, analysed alone, gives
@@ -100,6 +102,23 @@ if again.returncode == 0 or "exists" not in again.stderr:
 if not os.path.isfile(os.path.join(out, "damage.csv")):
     fail("the refused run destroyed the earlier result")
 print("existing output refused and kept: ok")
+
+# Images without a single crack: the crack-density map has no ranks, so the
+# run fails naming the map instead of printing rho = nan as a finding.
+flat = os.path.abspath("no_cracks")
+shutil.rmtree(flat, ignore_errors=True)
+r = run("no_cracks", f"""include {prm}
+subsection Synthetic images
+  set Cracks per cell = 0
+end
+subsection Output
+  set Directory = {flat}
+end
+""", expect_ok=False)
+if r.returncode == 0 or "crack-density map is 0 in all" not in r.stderr \
+        or os.path.exists(flat):
+    fail(f"a crack map without variance was not refused:\n{r.stderr}")
+print("a crack map without variance is refused, nothing published: ok")
 
 out2 = os.path.abspath("from_file")
 shutil.rmtree(out2, ignore_errors=True)

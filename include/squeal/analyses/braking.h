@@ -111,9 +111,11 @@ namespace squeal
        * snapshots are read back, and the time loop goes on from the step
        * after the checkpoint. The result equals an uninterrupted run's bit
        * for bit (same build, same thread count for the matrix-free product).
-       * @throws std::runtime_error if there is no checkpoint, it is corrupt,
-       * or it was written by a different model (DoFs, pad-face nodes, time
-       * step), besides the errors of run().
+       * @throws std::runtime_error if there is no checkpoint, a checkpoint
+       * file fails its CRC-32 check (damaged bytes), parameters.prm differs
+       * from the one the run started with, or the checkpoint was written by
+       * a different model (DoFs, pad-face nodes, time step), besides the
+       * errors of run().
        */
       void
       resume();
@@ -159,6 +161,12 @@ namespace squeal
       /// returns the step to continue from and the wall time spent so far
       std::pair<unsigned int, double>
       read_checkpoint();
+      /// CRC-32 of work_dir/parameters.prm
+      std::uint32_t
+      parameters_checksum() const;
+      /// read_checkpoint() on this rank alone
+      std::pair<unsigned int, double>
+      read_checkpoint_files();
       void
       run(bool resuming);
 
@@ -197,6 +205,10 @@ namespace squeal
       unsigned int                                n_snapshots = 0, n_frames = 0;
       /// samples and history samples already in the checkpoint files
       std::size_t saved_samples = 0, saved_history = 0;
+      /// CRC-32 (zlib) of the checkpoint's samples.bin and history.bin up
+      /// to saved_samples and saved_history, and of the parameters.prm the
+      /// run started from
+      std::uint32_t samples_crc = 0, history_crc = 0, parameters_crc = 0;
       /// step of the last checkpoint written or read (0: none)
       std::uint64_t  last_checkpoint = 0;
       bool           resuming        = false;

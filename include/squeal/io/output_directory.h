@@ -10,12 +10,13 @@
  * --overwrite).
  */
 
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpi.h>
 
-#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,33 +40,24 @@ namespace squeal
     }
 
     /**
+     * Records @p file as an input of this process (a parameter file, an
+     * INCLUDE, a mesh, a history): partial_directory() refuses an output
+     * folder that contains it. Thread-safe is not needed: inputs are read
+     * before any output starts.
+     */
+    void
+    register_input(const std::string &file);
+
+    /**
      * The temporary folder DIRECTORY.partial of a run writing into
      * @p directory (normalised; nothing is created).
      * @throws std::runtime_error naming the folder if it is the working
-     * directory or one of its ancestors (replacing it would delete the
-     * run's own input), or if it exists and @p overwrite is false.
+     * directory or one of its ancestors, or contains an input of this run
+     * (register_input()): replacing it would delete the run's own input;
+     * or if it exists and @p overwrite is false.
      */
-    inline std::string
-    partial_directory(const std::string &directory, const bool overwrite)
-    {
-      const std::string target = normalised(directory);
-      namespace fs             = std::filesystem;
-      const fs::path full      = fs::weakly_canonical(fs::absolute(target));
-      const fs::path cwd       = fs::weakly_canonical(fs::current_path());
-      const auto     mismatch =
-        std::mismatch(full.begin(), full.end(), cwd.begin(), cwd.end());
-      if (target.empty() || mismatch.first == full.end())
-        throw std::runtime_error(
-          "output directory '" + directory +
-          "' is the working directory or contains it; a run replaces its "
-          "output folder, so give it a folder of its own");
-      if (fs::exists(target) && !overwrite)
-        throw std::runtime_error(
-          "output directory '" + directory +
-          "' exists; set Output/Overwrite = true or pass --overwrite to "
-          "replace it");
-      return target + ".partial";
-    }
+    std::string
+    partial_directory(const std::string &directory, bool overwrite);
 
     /** Empties (or creates) @p partial and its sub-folder @p sub (if any). */
     inline void
@@ -92,8 +84,60 @@ namespace squeal
                          MPI_Comm                        comm,
                          const std::vector<std::string> &subs = {});
 
+    /**
+     * An output file whose failures are not lost: a std::ofstream that, when
+     * it is closed or destroyed, records a failed open, write or close (a
+     * full disk, a file-size limit, a vanished folder) for check_writes().
+     * Every file of a run's output folder is written through one, so that a
+     * run never publishes a truncated result.
+     */
+    class OutputFile : public std::ofstream
+    {
+    public:
+      /** Opens @p path (truncating, or as @p mode says). */
+      explicit OutputFile(const std::filesystem::path &path,
+                          std::ios::openmode           mode = std::ios::out);
+      /** Closes the file; a failure is recorded (destructors do not throw). */
+      ~OutputFile() override;
+      /**
+       * Closes the file now.
+       * @throws std::runtime_error naming the file if opening, writing or
+       * closing it failed.
+       */
+      void
+      close();
+
+    private:
+      std::string name;
+      bool        recorded = false;
+      void
+      record();
+    };
+
+    /**
+     * Writes @p out as the one .vtu file @p file, collectively over
+     * @p comm: on one rank through an OutputFile, on several through
+     * deal.II's MPI-IO writer (DataOutInterface::write_vtu_in_parallel,
+     * whose failures throw).
+     */
+    void
+    write_vtu(const dealii::DataOutInterface<3, 3> &out,
+              const std::string                    &file,
+              MPI_Comm                              comm);
+
+    /**
+     * Collective over @p comm: every rank learns whether any OutputFile of
+     * any rank failed since the last call (without MPI initialised, this
+     * process alone).
+     * @throws std::runtime_error on every rank, naming the first file that
+     * could not be written and the rank, if one failed.
+     */
+    void
+    check_writes(MPI_Comm comm);
+
     /** Renames the finished @p partial to @p directory, replacing an earlier
-     * one (partial_directory() has checked that this is allowed). */
+     * one (partial_directory() has checked that this is allowed). Call it
+     * after check_writes(): a failed write must fail the run. */
     inline void
     publish_directory(const std::string &partial, const std::string &directory)
     {

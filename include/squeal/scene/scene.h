@@ -407,6 +407,18 @@ namespace squeal
     make_scene(const parameters::AllParameters &prm);
 
     /**
+     * Checks every named parameter's value (Scene::parameters()) against its
+     * physical range (NamedParameter::lowest, highest): moduli in
+     * (0, 1e13] Pa, densities in (0, 1e5] kg/m^3, Rayleigh alpha in
+     * [0, 1e5] 1/s and beta in [0, 1e-3] s, friction coefficients in
+     * [0, 10], interface stiffnesses in [0, 1e20] N/m^3, springs in
+     * (0, 1e15] N/m.
+     * @throws std::runtime_error naming the parameter, its value and range.
+     */
+    void
+    check_parameter_ranges(const Scene &scene);
+
+    /**
      * Every point of @p sweep on @p scene: the nominal point with the first
      * parameter set to each of its values, for each value of the second
      * (second outermost).

@@ -58,9 +58,16 @@ namespace squeal
       std::vector<double> envelope;         ///< max |x| per window
       double              growth_rate = 0.; ///< 1/s, fitted on the growing part
       double fit_start = 0., fit_end = 0.;  ///< s, the fitted window
-      double final_amplitude = 0.;    ///< mean envelope over the last 20 %
-      bool   growing         = false; ///< envelope grew by more than 10x
-      bool   limit_cycle     = false; ///< last 20 % flat within 20 %
+      double final_amplitude = 0.; ///< mean envelope over the last 20 %
+      /// the envelope's peak after its smallest value exceeds 5x that value
+      /// and the envelope stays above a third of the peak after it
+      bool growing = false;
+      /// growing, and saturated: the last 20 % flat within 20 %, or the
+      /// final amplitude reached before the last 20 % and the last 20 %
+      /// flat within 50 %
+      bool   limit_cycle     = false;
+      double saturation_time = 0.; ///< s, first reaching the final amplitude
+                                   ///< (growing records only)
     };
 
     /**
@@ -70,7 +77,9 @@ namespace squeal
      * squares against time from the envelope's smallest value (after the
      * start) up to where it first reaches half of the final amplitude: the
      * exponential growth rate before saturation. Without growth, the fit
-     * spans the whole record (a negative rate: decay).
+     * spans the whole record (a negative rate: decay). A record that grows
+     * tenfold, overshoots and settles into a limit cycle is growing with
+     * limit_cycle set, whatever the overshoot (GrowthFit).
      * @throws std::runtime_error if fewer than 3 windows fit in @p x
      */
     GrowthFit
