@@ -1,6 +1,7 @@
 # Runs squeal on bad input and checks that it fails with a clear message.
 #   cmake -DSQUEAL=exe -DINPUT=file.prm -DEXPECT="text" [-DEXISTING=dir]
 #         [-DMPIEXEC=mpirun] -P check_error.cmake
+# With VALIDATE, squeal --validate must already refuse it.
 # With MPIEXEC, squeal runs on 2 ranks: rank 0 alone prints the error, the
 # launcher adds its own report, and the test's TIMEOUT catches a rank left
 # waiting.
@@ -38,6 +39,9 @@ if(MPIEXEC)
   # keep squeal's own lines, not the launcher's report
   string(REGEX MATCHALL "squeal: [^\n]*" own "${err}")
   string(REPLACE ";" "\n" err "${own}")
+elseif(VALIDATE)
+  execute_process(COMMAND "${SQUEAL}" --validate "${INPUT}"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 else()
   execute_process(COMMAND "${SQUEAL}" "${INPUT}"
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

@@ -43,6 +43,12 @@ namespace squeal
             std::to_string(prm.sweep.second.values.size()) +
             " points is more than the 1 000 000 a run can hold; sweep "
             "coarser or in parts");
+        for (const unsigned int p : prm.output.export_points)
+          if (prm.scene.analysis != "preload" && p >= n_points)
+            throw std::runtime_error(
+              "Output/Export matrices: sweep point " + std::to_string(p) +
+              " does not exist; the sweep has points 0 to " +
+              std::to_string(std::size_t(n_points) - 1));
         if (prm.scene.type == "mesh file")
           return;
         const auto  &m = prm.mesh;

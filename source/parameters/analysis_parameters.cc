@@ -253,6 +253,15 @@ namespace squeal
       prm.leave_subsection();
       check(history_start < end_time,
             "Transient/History start must be below Transient/End time");
+      // a given step: its count is known before the run (an automatic one
+      // is checked once the stability limit is)
+      check(time_step == 0. ||
+              std::ceil(end_time / time_step - 1e-9) + 1. < 2e9,
+            "Transient/End time = " + str(end_time) +
+              " s at Time step = " + str(time_step) + " s is " +
+              str(std::ceil(end_time / time_step - 1e-9) + 1.) +
+              " steps, more than a run can count (2e9); shorten the run or "
+              "take a larger step");
     }
     void
     Eigensolver::declare_parameters(ParameterHandler &prm) const

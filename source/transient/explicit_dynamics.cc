@@ -355,8 +355,12 @@ namespace squeal
         {
           std::ostringstream msg;
           msg << "the explicit solution is not finite at t = " << time()
-              << " s (step " << n_step << "): the time step " << dt
-              << " s is too large for this model";
+              << " s (step " << n_step << ", time step " << dt
+              << " s): the step was checked against the model's stability "
+                 "limit, so look for what else can blow up: a load, a "
+                 "material, a spring or an interface stiffness far out of "
+                 "scale, or contact that the step resolves badly (try "
+                 "Transient/Safety factor 0.5)";
           throw std::runtime_error(msg.str());
         }
     }
