@@ -8,7 +8,7 @@
 #   bash scripts/sanitize.sh [ctest arguments]
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-"$here/scripts/setup.sh" > /dev/null
+"$here/scripts/setup.sh" --packages
 mkdir -p "$here/build-sanitize"
 cd "$here/build-sanitize"
 if [ ! -f CMakeCache.txt ]; then

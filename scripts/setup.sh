@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what squeal needs from Debian 12 (when missing), configures and builds
 # it in Release into build/. Safe to run again: it only does what is missing.
+#   bash scripts/setup.sh [--packages]   (--packages: install, do not build)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # libopenblas0-pthread: Debian's optimised BLAS/LAPACK replaces the reference
@@ -21,6 +22,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo_cmd apt-get update -q
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
+[ "${1:-}" = "--packages" ] && exit 0
 mkdir -p "$here/build"
 cd "$here/build"
 if [ ! -f CMakeCache.txt ]; then
