@@ -5,6 +5,7 @@
 //   squeal-tribology --print-parameters       every parameter: default, range,
 //   help
 
+#include <squeal/base/errors.h>
 #include <squeal/tribology/tribology_analysis.h>
 
 #include <iostream>
@@ -78,7 +79,8 @@ main(int argc, char **argv)
     }
   catch (const std::exception &e)
     {
-      std::cerr << "squeal-tribology: error: " << e.what() << std::endl;
+      std::cerr << "squeal-tribology: error: " << squeal::one_line(e)
+                << std::endl;
       return 1;
     }
   return 0;

@@ -11,6 +11,7 @@
 
 #include <squeal/analyses/cea.h>
 #include <squeal/analyses/preload.h>
+#include <squeal/base/errors.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/mac.h>
 #include <squeal/io/matrix_export.h>
@@ -209,9 +210,22 @@ namespace squeal
                              size = Utilities::MPI::n_mpi_processes(comm);
           std::vector<double> packed; // p, m, then (re, im, res, q) per pair
           unsigned int        done = 0;
-          for (unsigned int p = rank; p < n_points; p += size)
+          std::string         failure; // this rank's first failed point
+          for (unsigned int p = rank; p < n_points && failure.empty();
+               p += size)
             {
-              const auto pairs = reduced.solve(sweep[p], es.f_min, es.f_max);
+              std::vector<eigen::ReducedEigenPair> pairs;
+              try
+                {
+                  pairs = reduced.solve(sweep[p], es.f_min, es.f_max);
+                }
+              catch (const std::exception &e)
+                {
+                  failure = "the reduced solve at sweep point " +
+                            std::to_string(p) + " (" + describe(sweep[p]) +
+                            "): " + one_line(e);
+                  break;
+                }
               packed.push_back(p);
               packed.push_back(pairs.size());
               for (const auto &r : pairs)
@@ -226,6 +240,11 @@ namespace squeal
               if (k == n_points || k % 10 < size)
                 progress(k, sweep[p], pairs.size());
             }
+          // every rank learns of a failed point (none waits for the rest)
+          for (const std::string &message :
+               Utilities::MPI::all_gather(comm, failure))
+            if (!message.empty())
+              throw std::runtime_error(message);
           points.resize(n_points);
           const int r = reduced.size();
           for (const auto &part : Utilities::MPI::all_gather(comm, packed))
@@ -261,8 +280,19 @@ namespace squeal
                     << std::endl;
             }
           else
-            p.full =
-              eigen::solve_full(model->parts(), values, band, pcout, &p.report);
+            try
+              {
+                p.full = eigen::solve_full(
+                  model->parts(), values, band, pcout, &p.report);
+              }
+            catch (const std::exception &e)
+              {
+                // collective: every rank fails here together
+                throw std::runtime_error("the full solve at sweep point " +
+                                         std::to_string(points.size()) + " (" +
+                                         describe(values) +
+                                         "): " + one_line(e));
+              }
           check_residuals(points.size(), p.full);
           for (const auto &r : p.full)
             {

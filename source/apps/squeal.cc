@@ -12,7 +12,10 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <squeal/analyses/run.h>
+#include <squeal/base/errors.h>
 #include <squeal/parameters/parameters.h>
+
+#include <petscsys.h>
 
 #include <iostream>
 #include <string>
@@ -27,6 +30,9 @@ main(int argc, char **argv)
   int                              petsc_argc = 1;
   char                           **petsc_argv = argv;
   Utilities::MPI::MPI_InitFinalize mpi(petsc_argc, petsc_argv, 1);
+  // PETSc's and SLEPc's failures reach the user as one line (deal.II's
+  // exceptions, caught below), not as PETSc's printed trace
+  PetscPushErrorHandler(PetscIgnoreErrorHandler, nullptr);
   const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   try
     {
@@ -61,7 +67,7 @@ main(int argc, char **argv)
   catch (const std::exception &e)
     {
       if (root)
-        std::cerr << "squeal: error: " << e.what() << std::endl;
+        std::cerr << "squeal: error: " << one_line(e) << std::endl;
       return 1;
     }
   return 0;

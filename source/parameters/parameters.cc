@@ -7,6 +7,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include <squeal/base/errors.h>
 #include <squeal/io/output_directory.h>
 #include <squeal/parameters/parameters.h>
 
@@ -254,16 +255,9 @@ namespace squeal
         }
       catch (const ExceptionBase &e)
         {
-          // deal.II's own text names the line and the entry; keep only it,
-          // folded onto one line.
-          std::ostringstream info;
-          e.print_info(info);
-          std::istringstream words(info.str());
-          std::string        folded, w;
-          while (words >> w)
-            folded += (folded.empty() ? "" : " ") + w;
+          // deal.II's own text names the line and the entry
           throw std::runtime_error("in parameter file '" + filename +
-                                   "': " + folded);
+                                   "': " + one_line(e));
         }
       if (scan.n_entries == 0)
         throw std::runtime_error(
