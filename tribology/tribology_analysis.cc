@@ -48,6 +48,30 @@ namespace squeal
     using internal::resolve;
     using parameters::parse_file;
 
+    namespace
+    {
+      // Cells of the correlation grid over an extent of @p wx x @p wy [m]
+      // at cells of @p h [m]; a dozen maps of doubles share the grid.
+      // @throws std::runtime_error naming Correlation/Cell size if they
+      // would not fit in memory (more than 1e8 cells: about 10 GB)
+      std::pair<unsigned int, unsigned int>
+      grid_cells(const double wx, const double wy, const double h)
+      {
+        const double nx = std::max(1., std::ceil(wx / h - 1e-6)),
+                     ny = std::max(1., std::ceil(wy / h - 1e-6));
+        if (!(nx * ny <= 1e8))
+          {
+            std::ostringstream m;
+            m << "Correlation/Cell size = " << h << " m gives " << nx << " x "
+              << ny << " cells over the " << wx << " x " << wy
+              << " m pad face: more than the 1e8 (about 10 GB of maps) a run "
+                 "can hold; take a larger cell";
+            throw std::runtime_error(m.str());
+          }
+        return {static_cast<unsigned int>(nx), static_cast<unsigned int>(ny)};
+      }
+    } // namespace
+
     std::string
     sidecar_of(const std::string &image, const std::string &folder)
     {
@@ -265,14 +289,9 @@ namespace squeal
             }
           const double h   = prm.correlation.cell_size;
           const double eps = 1e-9 * h;
-          const auto   n   = [&](int d) {
-            return std::max(1u,
-                            static_cast<unsigned int>(
-                              std::ceil((hi[d] - lo[d]) / h - 1e-6)));
-          };
           // Centre the grid on the face.
-          const unsigned int nx = n(0), ny = n(1);
-          log_damage = GridMap(nx,
+          const auto [nx, ny] = grid_cells(hi[0] - lo[0], hi[1] - lo[1], h);
+          log_damage          = GridMap(nx,
                                ny,
                                0.5 * (lo[0] + hi[0]) - 0.5 * nx * h - eps,
                                0.5 * (lo[1] + hi[1]) - 0.5 * ny * h - eps,
@@ -628,13 +647,9 @@ namespace squeal
                   hi[1]          = std::max(hi[1], t);
                 }
             }
-          const double h = prm.correlation.cell_size;
-          log_damage     = GridMap(
-            std::max(1u, unsigned(std::ceil((hi[0] - lo[0]) / h - 1e-6))),
-            std::max(1u, unsigned(std::ceil((hi[1] - lo[1]) / h - 1e-6))),
-            lo[0],
-            lo[1],
-            h);
+          const double h      = prm.correlation.cell_size;
+          const auto [nx, ny] = grid_cells(hi[0] - lo[0], hi[1] - lo[1], h);
+          log_damage          = GridMap(nx, ny, lo[0], lo[1], h);
           p_oscillation = separated = log_damage.empty_like();
         }
       GridMap length = log_damage.empty_like(), count = length, blob = length,
