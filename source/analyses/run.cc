@@ -15,6 +15,7 @@
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace squeal
 {
@@ -80,6 +81,68 @@ namespace squeal
                   "more machines)";
             throw std::runtime_error(m_.str());
           }
+      }
+    } // namespace
+
+    namespace
+    {
+      // A warning ("" if none) when the CEA band's top lies beyond what a
+      // built-in scene's coarse mesh resolves: fewer than 6 nodes (6 / p
+      // cells of degree p) per wavelength at Eigensolver/Maximum frequency,
+      // for the disc's bending wave (Kirchhoff plate, lambda = 2 pi
+      // (D / rho h)^1/4 / sqrt(omega)) over its largest in-plane cell, and
+      // for the shear wave (c_s = sqrt(E / 2 (1 + nu) rho)) in the pad and
+      // the support over theirs. Refinement under the pad and adaptivity
+      // are not counted: the warning is about the mesh a run starts from.
+      std::string
+      resolution_warning(const parameters::AllParameters &prm)
+      {
+        if (prm.scene.type == "mesh file" ||
+            (prm.scene.analysis != "cea" &&
+             prm.scene.analysis != "preloaded cea"))
+          return "";
+        const auto  &g = prm.geometry;
+        const auto  &m = prm.mesh;
+        const double p = m.fe_degree, f = prm.eigensolver.f_max,
+                     omega = 2. * M_PI * f;
+        std::ostringstream warning;
+        warning.precision(3);
+        const auto judge = [&](const std::string &what,
+                               const double       wavelength,
+                               const double       cell) {
+          const double nodes = wavelength / cell * p;
+          if (nodes < 6. && warning.str().empty())
+            warning << "warning: at Eigensolver/Maximum frequency " << f
+                    << " Hz the " << what << " is " << wavelength * 1e3
+                    << " mm long, " << nodes
+                    << " nodes of the starting mesh per wavelength (6 "
+                       "resolve it); refine the Mesh or raise its degree, "
+                       "or let Mesh/Frequency tolerance prove it";
+        };
+        const auto  &d = prm.materials.disc;
+        const double h = g.disc_thickness;
+        const double D = d.youngs_modulus * h * h * h /
+                         (12. * (1. - d.poisson_ratio * d.poisson_ratio));
+        judge(
+          "disc's bending wave",
+          2. * M_PI * std::pow(D / (d.density * h), 0.25) / std::sqrt(omega),
+          std::max(2. * M_PI * g.disc_outer_radius / m.disc_cells_circumference,
+                   (g.disc_outer_radius - g.disc_inner_radius) /
+                     m.disc_cells_radial));
+        if (prm.scene.type == "tribobrake")
+          for (const auto &[name, mat, cell] :
+               {std::tuple("pad's shear wave",
+                           prm.materials.pad,
+                           g.pad_size / m.pad_cells_side),
+                std::tuple("support's shear wave",
+                           prm.materials.support,
+                           g.support_length / m.support_cells_length)})
+            judge(name,
+                  std::sqrt(mat.youngs_modulus /
+                            (2. * (1. + mat.poisson_ratio) * mat.density)) /
+                    f,
+                  cell);
+        return warning.str();
       }
     } // namespace
 
@@ -194,6 +257,8 @@ namespace squeal
         else
           std::cout << ", " << prm.preload.normal_force << " N";
         std::cout << ", output to " << prm.output.directory << ")" << std::endl;
+        if (const std::string w = resolution_warning(prm); !w.empty())
+          std::cout << w << std::endl;
         std::cout << "Named parameters (Sweep/First and Second parameter):";
         for (const auto &p : scene.parameters())
           std::cout << "\n  " << p.name << " = " << p.value
