@@ -110,46 +110,62 @@ namespace squeal
       const fs::path     dir  = fs::path(work_dir) / "checkpoint";
       const unsigned int n_s  = mortar.n_slave();
       const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
-      if (rank == 0)
-        {
-          // every rank holds the same samples; rank 0 keeps them
-          std::ostringstream f, h;
-          for (std::size_t i = saved_samples; i < samples.size(); ++i)
-            f.write(reinterpret_cast<const char *>(samples[i].data()),
-                    sizeof(samples[i]));
-          for (std::size_t i = saved_history; i < history.time.size(); ++i)
-            {
-              put(h, history.time[i]);
-              for (unsigned int j = 0; j < n_s; ++j)
-                {
-                  put(h, history.p_N[j][i]);
-                  put(h, history.t_T1[j][i]);
-                  put(h, history.t_T2[j][i]);
-                  put(h, history.slip_velocity[j][i]);
-                  put<std::int32_t>(h, history.status[j][i]);
-                }
-            }
-          for (const auto &[name, bytes, crc] :
-               {std::tuple(dir / "samples.bin", f.str(), &samples_crc),
-                std::tuple(dir / "history.bin", h.str(), &history_crc)})
-            {
-              io::OutputFile out(name, std::ios::binary | std::ios::app);
-              out.write(bytes.data(), bytes.size());
-              out.close();
-              if (!out)
-                throw std::runtime_error("could not append to the checkpoint "
-                                         "file '" +
-                                         name.string() + "'");
-              *crc = crc32_of(bytes, *crc);
-            }
-        }
-      saved_samples         = samples.size();
-      saved_history         = history.time.size();
+      // Each part runs on every rank, and a failure on one (a full disk)
+      // stops all of them with its message; the gather is also the barrier
+      // between the parts.
+      const auto collective = [&](const auto &work) {
+        std::string failure;
+        try
+          {
+            work();
+          }
+        catch (const std::exception &e)
+          {
+            failure = e.what();
+          }
+        for (const std::string &message :
+             Utilities::MPI::all_gather(comm, failure))
+          if (!message.empty())
+            throw std::runtime_error("the checkpoint at step " +
+                                     std::to_string(next_step) + ": " +
+                                     message);
+      };
       const auto state_file = [&](const std::uint64_t step) {
         return dir / ("state." + std::to_string(step) + "." +
                       std::to_string(rank) + ".bin");
       };
-      {
+      collective([&]() {
+        if (rank == 0)
+          {
+            // every rank holds the same samples; rank 0 keeps them
+            std::ostringstream f, h;
+            for (std::size_t i = saved_samples; i < samples.size(); ++i)
+              f.write(reinterpret_cast<const char *>(samples[i].data()),
+                      sizeof(samples[i]));
+            for (std::size_t i = saved_history; i < history.time.size(); ++i)
+              {
+                put(h, history.time[i]);
+                for (unsigned int j = 0; j < n_s; ++j)
+                  {
+                    put(h, history.p_N[j][i]);
+                    put(h, history.t_T1[j][i]);
+                    put(h, history.t_T2[j][i]);
+                    put(h, history.slip_velocity[j][i]);
+                    put<std::int32_t>(h, history.status[j][i]);
+                  }
+              }
+            for (const auto &[name, bytes, crc] :
+                 {std::tuple(dir / "samples.bin", f.str(), &samples_crc),
+                  std::tuple(dir / "history.bin", h.str(), &history_crc)})
+              {
+                io::OutputFile out(name, std::ios::binary | std::ios::app);
+                out.write(bytes.data(), bytes.size());
+                out.close(); // throws naming the file
+                *crc = crc32_of(bytes, *crc);
+              }
+          }
+        saved_samples = samples.size();
+        saved_history = history.time.size();
         // the state, then its CRC-32: a damaged byte fails the resume
         std::ostringstream f;
         put<std::uint64_t>(f, model.n_dofs());
@@ -173,23 +189,19 @@ namespace squeal
         out.write(body.data(), body.size());
         put(out, crc32_of(body));
         out.close();
-        if (!out)
-          throw std::runtime_error("could not write the checkpoint '" +
-                                   state_file(next_step).string() + "'");
-      }
+      });
       // Every rank's state is complete: only now does `latest` point to it
       // (through a rename), and the previous states go.
-      MPI_Barrier(comm);
-      if (rank == 0)
-        {
+      collective([&]() {
+        if (rank == 0)
           {
             io::OutputFile f(dir / "latest.tmp");
             f << next_step << ' ' << Utilities::MPI::n_mpi_processes(comm)
               << '\n';
+            f.close();
+            fs::rename(dir / "latest.tmp", dir / "latest");
           }
-          fs::rename(dir / "latest.tmp", dir / "latest");
-        }
-      MPI_Barrier(comm);
+      });
       if (last_checkpoint > 0)
         fs::remove(state_file(last_checkpoint));
       last_checkpoint = next_step;
