@@ -696,13 +696,7 @@ namespace squeal
       assemble_load();
       solve();
       output_results();
-      io::check_writes(comm);
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        {
-          fs::remove_all(fs::path(work_dir) / "checkpoint");
-          io::publish_directory(work_dir, prm.output.directory);
-        }
-      MPI_Barrier(comm);
+      io::finish_run(work_dir, prm.output.directory, comm, "checkpoint");
       pcout << "Results in " << prm.output.directory << std::endl;
     }
   } // namespace analyses

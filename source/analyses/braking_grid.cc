@@ -100,10 +100,7 @@ namespace squeal
         }
       pcout << "\nStability table (" << points.size() << " braking runs):\n"
             << table.str();
-      io::check_writes(comm);
-      if (root)
-        io::publish_directory(work, prm.output.directory);
-      MPI_Barrier(comm);
+      io::finish_run(work, prm.output.directory, comm);
       pcout << "Results in " << prm.output.directory << std::endl;
     }
   } // namespace analyses

@@ -257,10 +257,7 @@ namespace squeal
           io::OutputFile(work_dir + "/mode_participation.csv")
             << participation.str();
         }
-      io::check_writes(comm);
-      if (root)
-        io::publish_directory(work_dir, output_target());
-      MPI_Barrier(comm);
+      io::finish_run(work_dir, output_target(), comm);
       pcout << "Results written to " << output_target() << "/" << std::endl;
     }
 

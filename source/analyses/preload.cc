@@ -277,10 +277,7 @@ namespace squeal
       assemble_load();
       solve();
       output_results();
-      io::check_writes(comm);
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        io::publish_directory(work_dir, prm.output.directory);
-      MPI_Barrier(comm);
+      io::finish_run(work_dir, prm.output.directory, comm);
       pcout << "Results in " << prm.output.directory << std::endl;
     }
   } // namespace analyses

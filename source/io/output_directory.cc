@@ -125,6 +125,32 @@ namespace squeal
     }
 
     void
+    finish_run(const std::string &partial,
+               const std::string &directory,
+               MPI_Comm           comm,
+               const std::string &scratch)
+    {
+      check_writes(comm);
+      std::string failure;
+      if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+        try
+          {
+            if (!scratch.empty())
+              std::filesystem::remove_all(std::filesystem::path(partial) /
+                                          scratch);
+            publish_directory(partial, directory);
+          }
+        catch (const std::exception &e)
+          {
+            failure = "could not publish '" + partial + "' as '" + directory +
+                      "': " + e.what();
+          }
+      failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
+      if (!failure.empty())
+        throw std::runtime_error(failure);
+    }
+
+    void
     register_input(const std::string &file)
     {
       if (!file.empty())

@@ -135,6 +135,19 @@ namespace squeal
     void
     check_writes(MPI_Comm comm);
 
+    /**
+     * Ends a run collectively over @p comm: check_writes(), then rank 0
+     * removes @p scratch (a sub-folder of @p partial, if not empty) and
+     * publishes @p partial as @p directory (publish_directory()).
+     * @throws std::runtime_error on every rank if a write or the rename
+     * failed on any (nothing is published then).
+     */
+    void
+    finish_run(const std::string &partial,
+               const std::string &directory,
+               MPI_Comm           comm,
+               const std::string &scratch = "");
+
     /** Renames the finished @p partial to @p directory, replacing an earlier
      * one (partial_directory() has checked that this is allowed). Call it
      * after check_writes(): a failed write must fail the run. */
