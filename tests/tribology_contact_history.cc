@@ -16,6 +16,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <type_traits>
+#include <vector>
 
 using namespace squeal::tribology;
 namespace io = squeal::io;
@@ -54,6 +56,19 @@ namespace
     if (!ok)
       test_tools::verbose() << name << ": got '" << message << "'" << std::endl;
     check("corrupt file (" + name + ") names '" + expected + "'", ok, 1., 0.);
+  }
+  // Replaces the n_nodes x n_samples dataset @p name of @p f by @p flat
+  // (double or int values).
+  template <typename T>
+  void
+  replace_field(const hid_t f, const char *name, const std::vector<T> &flat)
+  {
+    H5Ldelete(f, name, H5P_DEFAULT);
+    const hsize_t dims[2] = {25, 10000};
+    if constexpr (std::is_same_v<T, int>)
+      H5LTmake_dataset_int(f, name, 2, dims, flat.data());
+    else
+      H5LTmake_dataset_double(f, name, 2, dims, flat.data());
   }
 } // namespace
 
@@ -142,9 +157,7 @@ main(int argc, char **argv)
       for (auto row : h.p_N)
         flat.insert(flat.end(), row.begin(), row.end());
       flat[3 * 10000 + 17] = std::nan("");
-      H5Ldelete(f, "/p_N", H5P_DEFAULT);
-      const hsize_t dims[2] = {25, 10000};
-      H5LTmake_dataset_double(f, "/p_N", 2, dims, flat.data());
+      replace_field(f, "/p_N", flat);
     },
     "dataset /p_N: non-finite value (NaN or Inf) at node 3");
   expect_error(
@@ -155,9 +168,7 @@ main(int argc, char **argv)
       for (auto row : h.p_N)
         flat.insert(flat.end(), row.begin(), row.end());
       flat[5 * 10000] = -1.;
-      H5Ldelete(f, "/p_N", H5P_DEFAULT);
-      const hsize_t dims[2] = {25, 10000};
-      H5LTmake_dataset_double(f, "/p_N", 2, dims, flat.data());
+      replace_field(f, "/p_N", flat);
     },
     "negative contact pressure at node 5");
   expect_error(
@@ -166,9 +177,7 @@ main(int argc, char **argv)
     [&](hid_t f) {
       std::vector<int> flat(25 * 10000, 1);
       flat[42] = 7;
-      H5Ldelete(f, "/status", H5P_DEFAULT);
-      const hsize_t dims[2] = {25, 10000};
-      H5LTmake_dataset_int(f, "/status", 2, dims, flat.data());
+      replace_field(f, "/status", flat);
     },
     "dataset /status: value 7 at node 0");
   expect_error(
@@ -189,10 +198,7 @@ main(int argc, char **argv)
     "float status",
     h,
     [](hid_t f) {
-      std::vector<double> flat(25 * 10000, 1.5);
-      H5Ldelete(f, "/status", H5P_DEFAULT);
-      const hsize_t dims[2] = {25, 10000};
-      H5LTmake_dataset_double(f, "/status", 2, dims, flat.data());
+      replace_field(f, "/status", std::vector<double>(25 * 10000, 1.5));
     },
     "dataset /status must hold integers");
   expect_error(

@@ -179,12 +179,19 @@ check("plot_braking_grid.py writes stability_map.png",
       r.returncode == 0 and os.path.isfile(os.path.join(grid, "stability_map.png")), r.stderr)
 
 # Restart: kill a run right after its first checkpoint, resume it.
-killed = os.path.abspath("killed")
-for d in (killed, killed + ".partial"):
-    shutil.rmtree(d, ignore_errors=True)
-with open("killed.prm", "w") as f:
-    f.write(f"include {prm}\nsubsection Transient\n  set Checkpoint interval = 1000\nend\n"
-            f"subsection Output\n  set Directory = {killed}\nend\n")
+def fresh_run(name, interval):
+    """NAME.prm: the coarse run into a fresh folder NAME, checkpoints every
+    INTERVAL steps; returns the folder's absolute path."""
+    folder = os.path.abspath(name)
+    for d in (folder, folder + ".partial"):
+        shutil.rmtree(d, ignore_errors=True)
+    with open(name + ".prm", "w") as f:
+        f.write(f"include {prm}\nsubsection Transient\n  set Checkpoint interval = "
+                f"{interval}\nend\nsubsection Output\n  set Directory = {folder}\nend\n")
+    return folder
+
+
+killed = fresh_run("killed", 1000)
 state = os.path.join(killed + ".partial", "checkpoint", "latest")
 proc = subprocess.Popen([squeal, "killed.prm"], stdout=subprocess.DEVNULL,
                         stderr=subprocess.DEVNULL)
@@ -247,12 +254,7 @@ check("the checkpoint is removed at the end",
       not os.path.exists(os.path.join(killed, "checkpoint")))
 
 # SIGTERM in the time loop: a checkpoint, a clear stop, then --resume.
-termed = os.path.abspath("termed")
-for d in (termed, termed + ".partial"):
-    shutil.rmtree(d, ignore_errors=True)
-with open("termed.prm", "w") as f:
-    f.write(f"include {prm}\nsubsection Transient\n  set Checkpoint interval = 0\nend\n"
-            f"subsection Output\n  set Directory = {termed}\nend\n")
+termed = fresh_run("termed", 0)
 proc = subprocess.Popen([squeal, "termed.prm"], stdout=subprocess.PIPE,
                         stderr=subprocess.PIPE, text=True)
 for line in proc.stdout:
