@@ -4,7 +4,6 @@
 
 #include <deal.II/base/exceptions.h>
 
-#include <squeal/io/output_directory.h>
 #include <squeal/parameters/parameters.h>
 #include <squeal/tribology/tribology_analysis.h>
 
@@ -423,7 +422,7 @@ namespace squeal
       // an output folder must not hold what the run reads
       const auto input = [&](const std::string &file) {
         if (!file.empty() && file != "synthetic")
-          io::register_input(
+          parameters::register_input(
             (fs::path(base_directory) / fs::path(file)).string());
       };
       input(history.file);

@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <squeal/io/output_directory.h>
+#include <squeal/parameters/parameters.h>
 
 #include <algorithm>
 #include <fstream>
@@ -15,14 +16,6 @@ namespace squeal
     namespace
     {
       namespace fs = std::filesystem;
-
-      // the inputs register_input() recorded, as absolute canonical paths
-      std::vector<fs::path> &
-      inputs()
-      {
-        static std::vector<fs::path> list;
-        return list;
-      }
 
       fs::path
       resolved(const std::string &path)
@@ -150,13 +143,6 @@ namespace squeal
         throw std::runtime_error(failure);
     }
 
-    void
-    register_input(const std::string &file)
-    {
-      if (!file.empty())
-        inputs().push_back(resolved(file));
-    }
-
     std::string
     partial_directory(const std::string &directory, const bool overwrite)
     {
@@ -167,8 +153,8 @@ namespace squeal
           "output directory '" + directory +
           "' is the working directory or contains it; a run replaces its "
           "output folder, so give it a folder of its own");
-      for (const fs::path &input : inputs())
-        if (contains(full, input))
+      for (const std::string &file : parameters::inputs())
+        if (const fs::path input = resolved(file); contains(full, input))
           throw std::runtime_error(
             "output directory '" + directory + "' contains the input '" +
             input.string() +

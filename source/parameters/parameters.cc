@@ -8,7 +8,6 @@
 #include <deal.II/base/utilities.h>
 
 #include <squeal/base/errors.h>
-#include <squeal/io/output_directory.h>
 #include <squeal/parameters/parameters.h>
 
 #include "entries.h"
@@ -153,7 +152,7 @@ namespace squeal
       scan_file(const std::string &file, FileScan &scan)
       {
         scan.chain.push_back(file);
-        io::register_input(file);
+        register_input(file);
         std::ifstream in(file);
         std::string   physical;
         unsigned int  number = 0;
@@ -235,6 +234,29 @@ namespace squeal
       }
     } // namespace
 
+    namespace
+    {
+      std::vector<std::string> &
+      input_list()
+      {
+        static std::vector<std::string> list;
+        return list;
+      }
+    } // namespace
+
+    void
+    register_input(const std::string &file)
+    {
+      if (!file.empty())
+        input_list().push_back(file);
+    }
+
+    const std::vector<std::string> &
+    inputs()
+    {
+      return input_list();
+    }
+
     void
     parse_file(ParameterHandler &prm, const std::string &filename)
     {
@@ -296,7 +318,7 @@ namespace squeal
           prm.leave_subsection();
           prm.leave_subsection();
         }
-      io::register_input(mesh);
+      register_input(mesh);
     }
   } // namespace parameters
 } // namespace squeal

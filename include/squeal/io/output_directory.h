@@ -40,20 +40,12 @@ namespace squeal
     }
 
     /**
-     * Records @p file as an input of this process (a parameter file, an
-     * INCLUDE, a mesh, a history): partial_directory() refuses an output
-     * folder that contains it. Thread-safe is not needed: inputs are read
-     * before any output starts.
-     */
-    void
-    register_input(const std::string &file);
-
-    /**
      * The temporary folder DIRECTORY.partial of a run writing into
      * @p directory (normalised; nothing is created).
      * @throws std::runtime_error naming the folder if it is the working
      * directory or one of its ancestors, or contains an input of this run
-     * (register_input()): replacing it would delete the run's own input;
+     * (parameters::register_input()): replacing it would delete the run's
+     * own input;
      * or if it exists and @p overwrite is false.
      */
     std::string

@@ -512,6 +512,20 @@ namespace squeal
      */
     void
     parse_file(ParameterHandler &prm, const std::string &filename);
+
+    /**
+     * Records @p file as an input of this process (parse_file() records
+     * each parameter file and INCLUDE, AllParameters::read() the mesh file,
+     * squeal-tribology its history and images): io::partial_directory()
+     * refuses an output folder that contains one. Inputs are recorded
+     * before any output starts (no locking).
+     */
+    void
+    register_input(const std::string &file);
+
+    /** The inputs register_input() recorded, as given. */
+    const std::vector<std::string> &
+    inputs();
   } // namespace parameters
 } // namespace squeal
 
