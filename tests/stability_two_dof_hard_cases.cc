@@ -47,7 +47,9 @@ namespace
     A.bottomLeftCorner(2, 2)  = -K;
     A.bottomRightCorner(2, 2) = -C;
     std::vector<std::complex<double>> l;
-    for (const auto &x : Eigen::EigenSolver<Eigen::Matrix4d>(A).eigenvalues())
+    // the solver outlives the loop over the eigenvalues it holds
+    const Eigen::EigenSolver<Eigen::Matrix4d> solver(A);
+    for (const auto &x : solver.eigenvalues())
       if (x.imag() > 0)
         l.push_back(x);
     std::sort(l.begin(), l.end(), [](auto x, auto y) {
