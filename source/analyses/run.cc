@@ -30,9 +30,10 @@ namespace squeal
       // sweep's point count, and for the built-in scenes a lower bound of
       // the DoFs (3 p^3 per cell of the coarse disc, pad and support) and of
       // the memory (the sparse matrices alone: 3 (2p + 1)^3 entries of 12
-      // bytes per row, three matrices for a CEA, one otherwise).
+      // bytes per row, three matrices for a CEA, one otherwise), and for a
+      // braking run a lower bound of its samples and contact history.
       // @throws std::runtime_error if the sweep has more than a million
-      // points or the lower bound exceeds this machine's memory.
+      // points or a lower bound exceeds this machine's memory.
       void
       check_run_size(const parameters::AllParameters &prm)
       {
@@ -50,9 +51,38 @@ namespace squeal
               "Output/Export matrices: sweep point " + std::to_string(p) +
               " does not exist; the sweep has points 0 to " +
               std::to_string(std::size_t(n_points) - 1));
+        const double memory =
+          double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+        const auto &m = prm.mesh;
+        if (prm.scene.analysis == "braking")
+          {
+            // the samples (17 numbers from t = 0) and the contact history
+            // (4 numbers and a status per pad-face node from History
+            // start), all kept until the end
+            const auto  &tr = prm.transient;
+            const double pad_nodes =
+              prm.scene.type == "tribobrake" ?
+                std::pow(m.pad_cells_side * m.fe_degree + 1., 2) :
+                1.;
+            const double history = tr.end_time * tr.sampling_rate * 17. * 8. +
+                                   (tr.end_time - tr.history_start) *
+                                     tr.sampling_rate * pad_nodes *
+                                     (4. * 8. + 4.);
+            if (history > memory)
+              {
+                std::ostringstream m_;
+                m_.precision(3);
+                m_ << "Transient: " << tr.end_time * tr.sampling_rate
+                   << " samples (End time x Sampling rate) of at least "
+                   << pad_nodes << " pad-face nodes need at least "
+                   << history / 1e9 << " GB; this machine has " << memory / 1e9
+                   << " GB (lower Transient/Sampling rate or raise History "
+                      "start)";
+                throw std::runtime_error(m_.str());
+              }
+          }
         if (prm.scene.type == "mesh file")
           return;
-        const auto  &m = prm.mesh;
         const double cells =
           double(m.disc_cells_circumference) * m.disc_cells_radial *
             m.disc_cells_thickness +
@@ -67,8 +97,6 @@ namespace squeal
                                   prm.scene.analysis == "preloaded cea" ?
                                 3. :
                                 1.);
-        const double memory =
-          double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
         if (bytes > memory)
           {
             std::ostringstream m_;
