@@ -5,8 +5,9 @@ usage: check_preload.py SQUEAL PRM WORKDIR
 
 Runs build/squeal on the coarse preload and checks:
 - the output files (contact.csv, preload_summary.txt, contact.pvd,
-  contact_surface.vtu, displacement.vtu, parameters.prm) and the pressure
-  map of scripts/plot_contact.py;
+  contact_surface.vtu, displacement.vtu, parameters.prm), contact.pvd's
+  entries loading through VTK's reader, and the pressure map of
+  scripts/plot_contact.py;
 - equilibrium: the normal contact force equals the 100 N load (1e-8), the
   friction force is mu N (1e-10), and the support's springs, evaluated from
   the spring matrix alone, hold back the friction force (1e-6);
@@ -38,6 +39,9 @@ import os
 import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import pvd_loads  # noqa: E402
 
 squeal, prm, work = sys.argv[1:4]
 prm = os.path.abspath(prm)
@@ -77,6 +81,9 @@ for f in ["contact.csv", "preload_summary.txt", "contact.pvd",
           "contact_surface.vtu", "displacement.vtu", "parameters.prm"]:
     if not os.path.isfile(os.path.join(out, f)):
         fail(f"missing {f}")
+ok, said = pvd_loads(squeal, os.path.join(out, "contact.pvd"))
+if not ok:
+    fail(f"contact.pvd does not load through VTK: {said}")
 r = subprocess.run(["/usr/bin/python3", plot, out], capture_output=True, text=True)
 if r.returncode != 0 or not os.path.isfile(os.path.join(out, "contact_pressure.png")):
     fail(f"plot_contact.py failed: {r.stderr}")
@@ -130,9 +137,9 @@ out4, s4, _ = run("steps", "subsection Preload\n  set Load steps = 4\nend\n")
 for k in range(1, 5):
     if not os.path.isfile(os.path.join(out4, f"contact_step_{k:03d}.csv")):
         fail(f"missing contact_step_{k:03d}.csv")
-pvd = open(os.path.join(out4, "contact.pvd")).read()
-if pvd.count("<DataSet") != 4:
-    fail("contact.pvd does not list the 4 load steps")
+ok, said = pvd_loads(squeal, os.path.join(out4, "contact.pvd"))
+if not ok or not said.startswith("contact.pvd: 4 entries load"):
+    fail(f"contact.pvd does not list 4 load steps that load through VTK: {said}")
 if abs(s4["normal_force_N"] / N - 1) > 1e-8 or s4["load_steps"] != 4:
     fail(f"4 steps: normal force {s4['normal_force_N']}")
 if abs(s4["friction_force_N"] - s["friction_force_N"]) > 1e-8 * N:

@@ -20,8 +20,8 @@ Runs the program serially and with `mpirun -np 2`, then checks:
   the modes at the top of the band are where the reduced model is least
   accurate; the full solver's 1e-8 agreement is tested in
   cea_tribobrake_coarse.mpirun=2);
-- every entry of modes.pvd (serial and 2 ranks) names a .pvtu that exists
-  and parses as VTK XML, and every piece it names exists and holds points
+- every entry of modes.pvd (serial and 2 ranks) loads through VTK's XML
+  readers (squeal-check-pvd): the .pvtu and its pieces exist, hold points
   and both mode fields;
 - plot_cea.py makes its three PNG files.
 Exits non-zero on the first failure.
@@ -32,7 +32,9 @@ import os
 import shutil
 import subprocess
 import sys
-import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import pvd_loads  # noqa: E402
 
 squeal, prm, work = sys.argv[1:4]
 other_pair = sys.argv[4:] == ["--other-pair"]
@@ -71,26 +73,13 @@ def rows(out, header_expected=HEADER):
 os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
 os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
 def pvd_entries_load(out):
-    """Every DataSet of modes.pvd names a parsable .pvtu whose pieces exist
-    and carry points and the mode_real / mode_imag fields."""
-    entries = list(ET.parse(os.path.join(out, "modes.pvd")).getroot()
-                   .iter("DataSet"))
-    if not entries:
-        fail(f"{out}/modes.pvd lists no mode")
-    for ds in entries:
-        pvtu = os.path.join(out, ds.get("file"))
-        if not os.path.isfile(pvtu):
-            fail(f"modes.pvd names {ds.get('file')}, which does not exist")
-        root = ET.parse(pvtu).getroot()
-        names = {a.get("Name") for a in root.iter("PDataArray")}
-        if not {"mode_real", "mode_imag"} <= names:
-            fail(f"{pvtu} has the fields {sorted(names)}")
-        for piece in root.iter("Piece"):
-            vtu = os.path.join(os.path.dirname(pvtu), piece.get("Source"))
-            grid = ET.parse(vtu).getroot().find("UnstructuredGrid/Piece")
-            if grid is None or int(grid.get("NumberOfPoints")) == 0:
-                fail(f"{vtu} holds no points")
-    print(f"modes.pvd: {len(entries)} entries, each loads: ok")
+    """Every DataSet of modes.pvd loads through VTK's XML readers
+    (squeal-check-pvd) with points and the mode_real / mode_imag fields."""
+    ok, said = pvd_loads(squeal, os.path.join(out, "modes.pvd"),
+                         ("mode_real", "mode_imag"))
+    if not ok:
+        fail(said)
+    print(f"{said} through VTK's reader: ok")
 
 
 def plots(out):

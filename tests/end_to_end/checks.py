@@ -24,6 +24,15 @@ def finish():
     sys.exit(1 if _failures else 0)
 
 
+def pvd_loads(squeal, pvd, fields=()):
+    """Opens PVD (a ParaView collection) through VTK's XML readers with
+    squeal-check-pvd, built beside SQUEAL: every entry exists, loads, holds
+    points and every point field of FIELDS. Returns (ok, what it said)."""
+    tool = os.path.join(os.path.dirname(squeal), "squeal-check-pvd")
+    r = subprocess.run([tool, pvd, *fields], capture_output=True, text=True)
+    return r.returncode == 0, (r.stdout + r.stderr).strip()
+
+
 def run_squeal(squeal, base_prm, name, extra="", mpi=0):
     """Writes NAME.prm (include BASE_PRM, then EXTRA, then Output/Directory =
     NAME), runs squeal on it into a fresh folder NAME, under `mpirun -np MPI`
