@@ -43,6 +43,14 @@ namespace test_tools
       }
   }
 
+  /** Prints "name: ok" when @p ok, else "name: FAILED", and records the
+   *  failure: for a condition that has no error to show. */
+  inline void
+  check_true(const std::string &name, const bool ok)
+  {
+    check(name, ok ? 0. : 1., 0., 0., 1.);
+  }
+
   /** A stream for measured values worth seeing but not comparing (they
    *  are not in the .output files): std::cerr when SQUEAL_VERBOSE is set,
    *  else a sink. */

@@ -43,7 +43,9 @@ namespace squeal
       , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
       , model(std::make_unique<physics::StructuralModel>(prm, comm))
     {
-      model->varied          = varied_parameters();
+      // sensitivities need every named parameter in parts of its own
+      if (prm.output.sensitivities == "none")
+        model->varied = varied_parameters();
       model->tie_constraints = contact::add_tie_constraints;
     }
 
@@ -294,6 +296,37 @@ namespace squeal
                                          "): " + one_line(e));
               }
           check_residuals(points.size(), p.full);
+          if (prm.output.sensitivities != "none")
+            {
+              // inside the full solve's timer section: the left
+              // eigenvectors are a second full solve
+              const auto               start = std::chrono::steady_clock::now();
+              std::vector<std::string> names;
+              for (const auto &parameter : model->scene->parameters())
+                names.push_back(parameter.name);
+              try
+                {
+                  const auto left = eigen::left_eigenvectors(
+                    model->parts(), values, band, p.full, pcout);
+                  p.sensitivity = eigen::eigenvalue_sensitivities(
+                    model->parts(), values, names, p.full, left);
+                  pcout << "  sensitivities: " << p.full.size() << " modes x "
+                        << names.size()
+                        << " parameters (left eigenvectors by a full solve of "
+                           "the transposed problem), "
+                        << std::chrono::duration<double>(
+                             std::chrono::steady_clock::now() - start)
+                             .count()
+                        << " s" << std::endl;
+                }
+              catch (const std::exception &e)
+                {
+                  throw std::runtime_error("the sensitivities at sweep point " +
+                                           std::to_string(points.size()) +
+                                           " (" + describe(values) +
+                                           "): " + one_line(e));
+                }
+            }
           for (const auto &r : p.full)
             {
               p.lambda.push_back(r.lambda);
@@ -314,6 +347,16 @@ namespace squeal
       band.residual_tolerance = es.residual_tolerance;
       band.symmetric_solver   = es.symmetric_solver;
       return band;
+    }
+
+    bool
+    ComplexEigenvalueAnalysis::near_unstable(
+      const std::complex<double> lambda) const
+    {
+      const auto &es = prm.eigensolver;
+      return lambda.real() + es.certification_margin >
+             std::max(es.unstable_tolerance,
+                      es.unstable_relative_tolerance * std::abs(lambda));
     }
 
     void
@@ -473,10 +516,8 @@ namespace squeal
         return;
       TimerOutput::Scope t(timer, "certification");
       const auto         start = std::chrono::steady_clock::now();
-      const auto         near  = [&](const std::complex<double> l) {
-        return l.real() + es.certification_margin >
-               std::max(es.unstable_tolerance,
-                        es.unstable_relative_tolerance * std::abs(l));
+      const auto         near  = [this](const std::complex<double> l) {
+        return near_unstable(l);
       };
       // the points with eigenvalues to certify, those that share the
       // preconditioner's M and K_s next to each other
@@ -688,6 +729,7 @@ namespace squeal
       certify();
       classify();
       check_against_full();
+      decompose_unstable_modes();
       if (!unverified.empty())
         {
           // one clear error: the first three failures and their count

@@ -1,7 +1,9 @@
 // The CEA's outputs: eigenvalues.csv, unstable_regions.csv,
 // check_full.csv, mode_participation.csv (kinetic-energy shares per body
-// and the mode names of mode_naming.h), the mode shapes (modes.pvd) and the
-// error indicator, written into the work folder and published at the end.
+// and the mode names of mode_naming.h), sensitivities.csv,
+// modal_contributions.csv, the mode shapes
+// (modes.pvd) and the error indicator, written into the work folder and
+// published at the end.
 
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/petsc_vector.h>
@@ -12,6 +14,7 @@
 #include <squeal/io/output_directory.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -207,38 +210,14 @@ namespace squeal
           else
             continue;
           {
-            // kinetic-energy shares with the whole mass of the point (every
-            // body at its density)
-            const std::vector<double> e =
-              physics::kinetic_energy_by_body(*model, pt.values, re, im);
-            const auto &bodies = model->scene->bodies;
-            const auto  share  = [&](const scene::Body &b) {
-              return b.id < e.size() ? e[b.id] : 0.;
-            };
-            double total = 0.;
-            for (const scene::Body &b : bodies)
-              total += share(b);
+            std::vector<double> shares;
+            const std::string   mode_name =
+              describe_mode(pt.values, re, im, &shares);
             participation << p << ',' << k << ','
                           << pt.lambda[k].imag() / (2 * M_PI) << ','
                           << pt.lambda[k].real();
-            for (const scene::Body &b : bodies)
-              participation << ',' << share(b) / total;
-            // a disc carrying more than half the energy names the mode
-            // (s,n+-); otherwise the body carrying most besides the disc
-            const scene::Body *disc = model->scene->disc();
-            std::string        mode_name;
-            if (disc != nullptr && share(*disc) > 0.5 * total)
-              mode_name = disc_mode_name(*model, *disc, re, im);
-            else
-              {
-                double most = -1.;
-                for (const scene::Body &b : bodies)
-                  if (&b != disc && share(b) > most)
-                    {
-                      most      = share(b);
-                      mode_name = b.name;
-                    }
-              }
+            for (const double share : shares)
+              participation << ',' << share;
             participation << ",\"" << mode_name << "\"\n";
           }
           std::ostringstream name;
@@ -256,9 +235,116 @@ namespace squeal
           DataOutBase::write_pvd_record(pvd, records);
           io::OutputFile(work_dir + "/mode_participation.csv")
             << participation.str();
+          if (prm.output.sensitivities != "none")
+            write_sensitivities();
+          if (prm.output.modal_contributions)
+            {
+              const auto    &scene = *model->scene;
+              io::OutputFile mc(work_dir + "/modal_contributions.csv");
+              mc << "point,"
+                 << scene.parameter(prm.sweep.first.parameter).column() << ','
+                 << scene.parameter(prm.sweep.second.parameter).column()
+                 << ",mode,freq_Hz,re_per_s,captured,rank,frictionless_mode,"
+                    "frictionless_freq_Hz,frictionless_name,share,"
+                    "coefficient_re,coefficient_im\n";
+              for (const auto &row : contribution_rows)
+                mc << row << '\n';
+            }
         }
       io::finish_run(work_dir, output_target(), comm);
       pcout << "Results written to " << output_target() << "/" << std::endl;
+    }
+
+    std::string
+    ComplexEigenvalueAnalysis::describe_mode(
+      const parameters::ScalarPoint &values,
+      const physics::PETScVector    &re,
+      const physics::PETScVector    &im,
+      std::vector<double>           *shares) const
+    {
+      // kinetic-energy shares with the whole mass of the point (every body
+      // at its density)
+      const std::vector<double> e =
+        physics::kinetic_energy_by_body(*model, values, re, im);
+      const auto &bodies = model->scene->bodies;
+      const auto  share  = [&](const scene::Body &b) {
+        return b.id < e.size() ? e[b.id] : 0.;
+      };
+      double total = 0.;
+      for (const scene::Body &b : bodies)
+        total += share(b);
+      if (shares != nullptr)
+        {
+          shares->clear();
+          for (const scene::Body &b : bodies)
+            shares->push_back(share(b) / total);
+        }
+      // a disc carrying more than half the energy names the mode (s,n+-);
+      // otherwise the body carrying most besides the disc
+      const scene::Body *disc = model->scene->disc();
+      if (disc != nullptr && share(*disc) > 0.5 * total)
+        return disc_mode_name(*model, *disc, re, im);
+      std::string name;
+      double      most = -1.;
+      for (const scene::Body &b : bodies)
+        if (&b != disc && share(b) > most)
+          {
+            most = share(b);
+            name = b.name;
+          }
+      return name;
+    }
+
+    void
+    ComplexEigenvalueAnalysis::write_sensitivities() const
+    {
+      const auto    &scene  = *model->scene;
+      const auto     first  = scene.parameter(prm.sweep.first.parameter);
+      const auto     second = scene.parameter(prm.sweep.second.parameter);
+      const auto    &es     = prm.eigensolver;
+      io::OutputFile csv(work_dir + "/sensitivities.csv");
+      // one row per mode and parameter; d* in 1/s or Hz per unit of the
+      // parameter, relative_d_re_per_s = p d Re lambda / d p
+      csv << "point," << first.column() << ',' << second.column()
+          << ",mode,freq_Hz,re_per_s,unstable,condition,parameter,unit,value,"
+             "d_re_per_s_per_unit,d_freq_Hz_per_unit,relative_d_re_per_s,"
+             "value_at_re_zero\n"
+          << std::setprecision(10);
+      const auto parameters = scene.parameters();
+      for (unsigned int p = 0; p < points.size(); ++p)
+        for (unsigned int m = 0; m < points[p].sensitivity.size(); ++m)
+          {
+            const auto &s = points[p].sensitivity[m];
+            const auto  l = s.lambda;
+            if (prm.output.sensitivities == "unstable" && !near_unstable(l))
+              continue;
+            for (unsigned int j = 0; j < parameters.size(); ++j)
+              {
+                const auto  &q     = parameters[j];
+                const double value = points[p].values.get(q.name);
+                const double d_re  = s.derivative[j].real();
+                csv << p << ',' << points[p].values.get(first.name) << ','
+                    << points[p].values.get(second.name) << ',' << m << ','
+                    << l.imag() / (2 * M_PI) << ',' << l.real() << ','
+                    << (eigen::is_unstable(l,
+                                           es.unstable_tolerance,
+                                           es.unstable_relative_tolerance) ?
+                          1 :
+                          0)
+                    << ',' << s.condition << ',' << q.name << ',' << q.unit
+                    << ',' << value << ',' << d_re << ','
+                    << s.derivative[j].imag() / (2 * M_PI) << ','
+                    << value * d_re << ',';
+                // first order: Re lambda + (v - value) d_re = 0, if the
+                // value is one the parameter may take
+                const double zero = value - l.real() / d_re;
+                if (d_re != 0. && std::isfinite(zero) &&
+                    (zero > q.lowest || (zero == q.lowest && !q.low_open)) &&
+                    zero <= q.highest)
+                  csv << zero;
+                csv << '\n';
+              }
+          }
     }
 
     std::string

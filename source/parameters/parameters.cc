@@ -57,6 +57,30 @@ namespace squeal
                         "the parts' coefficients (parts.csv) and the DoF "
                         "coordinates (dofs.csv), for an independent solve; "
                         "empty: none.");
+      prm.declare_entry("Sensitivities",
+                        sensitivities,
+                        Patterns::Selection("none|unstable|all"),
+                        "CEA with Eigensolver/Method = full: write "
+                        "sensitivities.csv, d lambda / d p [1/s per unit of "
+                        "p] of the modes for every named parameter p of the "
+                        "scene (from the left and right eigenvectors; the "
+                        "left ones cost a second full solve per point), with "
+                        "the value of p that makes an unstable mode stable "
+                        "to first order: unstable = the unstable modes and "
+                        "those within Eigensolver/Certification margin of "
+                        "the stability threshold, all = every mode in the "
+                        "band, none = no file.");
+      prm.declare_entry("Modal contributions",
+                        modal_contributions ? "true" : "false",
+                        Patterns::Bool(),
+                        "CEA: write modal_contributions.csv, every unstable "
+                        "region's mode at its largest growth rate written "
+                        "on the real modes of the frictionless assembly "
+                        "(K without friction, M) up to 1.5 times Maximum "
+                        "frequency: each contributing mode's frequency, name "
+                        "and share of the kinetic norm (the pair that locks "
+                        "in carries most of it); one symmetric eigensolve "
+                        "per point involved.");
       prm.leave_subsection();
     }
 
@@ -64,9 +88,11 @@ namespace squeal
     Output::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Output");
-      directory   = prm.get("Directory");
-      overwrite   = prm.get_bool("Overwrite");
-      mode_output = prm.get("Mode shapes");
+      directory           = prm.get("Directory");
+      overwrite           = prm.get_bool("Overwrite");
+      mode_output         = prm.get("Mode shapes");
+      sensitivities       = prm.get("Sensitivities");
+      modal_contributions = prm.get_bool("Modal contributions");
       export_points.clear();
       for (const auto &item :
            Utilities::split_string_list(prm.get("Export matrices")))
@@ -115,6 +141,12 @@ namespace squeal
               scene.analysis +
               "); without a preload set it to 0 and refine the disc track "
               "by geometry with Mesh/Disc refinements under pad");
+      check(output.sensitivities == "none" || eigensolver.method == "full",
+            "Output/Sensitivities = " + output.sensitivities +
+              " needs Eigensolver/Method = full (it is " + eigensolver.method +
+              "): the sensitivities use the full model's left and right "
+              "eigenvectors; solve the points of interest with the full "
+              "method, or set Output/Sensitivities = none");
     }
 
     namespace

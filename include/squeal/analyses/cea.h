@@ -9,7 +9,8 @@
  * tracked across the sweep, unstable regions (Re lambda > tolerance) and the
  * modes that lock in. Writes, into Output/Directory: eigenvalues.csv,
  * unstable_regions.csv, check_full.csv (reduced against full), modes.pvd with
- * the mode shapes, parameters.prm (the resolved parameters).
+ * the mode shapes, sensitivities.csv (d lambda / d p, full method, when
+ * asked), parameters.prm (the resolved parameters).
  */
 
 #include <deal.II/base/conditional_ostream.h>
@@ -18,6 +19,7 @@
 
 #include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/reduced_model.h>
+#include <squeal/eigen/sensitivity.h>
 #include <squeal/eigen/tracking.h>
 #include <squeal/physics/structural_model.h>
 
@@ -95,6 +97,27 @@ namespace squeal
       classify();
       void
       output_results() const;
+      /// sensitivities.csv (rank 0): Output/Sensitivities
+      void
+      write_sensitivities() const;
+      /// The name of the mode re + i im at the point @p values: (s,n+-)
+      /// when the disc carries most of its kinetic energy, else the body
+      /// carrying most besides the disc; with @p shares, each body's share
+      /// of the kinetic energy (scene order). Collective.
+      std::string
+      describe_mode(const parameters::ScalarPoint &values,
+                    const physics::PETScVector    &re,
+                    const physics::PETScVector    &im,
+                    std::vector<double>           *shares = nullptr) const;
+      /// Output/Modal contributions: every unstable region's mode at its
+      /// largest growth rate on the frictionless assembly's modes
+      /// (eigen/modal_contribution.h), into contribution_rows and the log
+      void
+      decompose_unstable_modes();
+      /// Whether @p lambda [1/s] lies above the stability threshold minus
+      /// Eigensolver/Certification margin (unstable or nearly so).
+      bool
+      near_unstable(const std::complex<double> lambda) const;
       /// writes the mode re + i im as modes/NAME_0.pvtu (+ .vtu pieces);
       /// returns the .pvtu's name relative to modes/
       std::string
@@ -190,11 +213,16 @@ namespace squeal
         std::vector<eigen::EigenPair> full;    ///< full-solver pairs
         /// the full solver's counts and residuals (full method only)
         eigen::FullSolveReport report;
+        /// d lambda / d p of each full pair for every named parameter of
+        /// the scene (Output/Sensitivities, full method only)
+        std::vector<eigen::EigenvalueSensitivity> sensitivity;
       };
       std::vector<Point>                 points;
       std::vector<ModeRecord>            modes;
       std::vector<eigen::UnstableRegion> regions;
       std::vector<std::string>           check_rows;
+      /// modal_contributions.csv rows (rank 0)
+      std::vector<std::string> contribution_rows;
       /// Failed residuals and checks: the run stops with them, or writes
       /// DIRECTORY.unverified (Eigensolver/Allow unverified results).
       std::vector<std::string> unverified;

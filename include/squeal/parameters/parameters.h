@@ -388,6 +388,14 @@ namespace squeal
       std::string mode_output = "unstable and first"; ///< or `none`, `all`
       /// CEA sweep points whose matrices are exported (MatrixMarket)
       std::vector<unsigned int> export_points;
+      /// CEA, full method: `none`, `unstable` (the unstable and nearly
+      /// unstable modes: Re lambda within Eigensolver/Certification margin
+      /// of the stability threshold) or `all` modes' d lambda / d p for
+      /// every named parameter, in sensitivities.csv (eigen/sensitivity.h)
+      std::string sensitivities = "none";
+      /// CEA: decompose every unstable region's mode at its largest growth
+      /// rate on the frictionless assembly's modes (modal_contributions.csv)
+      bool modal_contributions = false;
       /** Declares the subsection's entries: defaults, ranges, help (SI units).
        */
       void
