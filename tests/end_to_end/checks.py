@@ -33,6 +33,22 @@ def pvd_loads(squeal, pvd, fields=()):
     return r.returncode == 0, (r.stdout + r.stderr).strip()
 
 
+def every_pvd_loads(squeal, out):
+    """Stops the check unless every .pvd below the folder OUT (a finished
+    run's) loads through VTK's XML readers (a .pvd without entries is
+    allowed: Output/Mode shapes = none)."""
+    for folder, _, files in os.walk(out):
+        for f in sorted(files):
+            if f.endswith(".pvd"):
+                tool = os.path.join(os.path.dirname(squeal), "squeal-check-pvd")
+                r = subprocess.run([tool, os.path.join(folder, f),
+                                    "--allow-empty"],
+                                   capture_output=True, text=True)
+                if r.returncode != 0:
+                    print(f"FAILED: {r.stdout}{r.stderr}")
+                    sys.exit(1)
+
+
 def run_squeal(squeal, base_prm, name, extra="", mpi=0):
     """Writes NAME.prm (include BASE_PRM, then EXTRA, then Output/Directory =
     NAME), runs squeal on it into a fresh folder NAME, under `mpirun -np MPI`
@@ -49,6 +65,7 @@ def run_squeal(squeal, base_prm, name, extra="", mpi=0):
     if r.returncode != 0:
         print(f"FAILED: {name}: exit {r.returncode}\n{r.stdout[-3000:]}\n{r.stderr}")
         sys.exit(1)
+    every_pvd_loads(squeal, out)
     return out, r.stdout
 
 
@@ -88,6 +105,9 @@ def run_table_point(squeal, base_prm, name, extra, mpi=0):
 end
 """)
     launcher = ["mpirun", "-np", str(mpi)] if mpi else []
-    return out, subprocess.run(launcher + [squeal, name + ".prm"],
-                               capture_output=True, text=True)
+    r = subprocess.run(launcher + [squeal, name + ".prm"], capture_output=True,
+                       text=True)
+    if r.returncode == 0:
+        every_pvd_loads(squeal, out)
+    return out, r
 

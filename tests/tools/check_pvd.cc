@@ -1,10 +1,11 @@
-// squeal-check-pvd FILE.pvd [FIELD ...]: opens a ParaView collection the way
-// ParaView does, through VTK's XML readers: every DataSet it lists must
-// exist and load (vtkXMLGenericDataObjectReader: .vtu, .pvtu and their
-// pieces) without a VTK error, hold points, and carry every named point-data
-// FIELD. Prints "FILE: N entries load" and exits 0, or names the first entry
-// that does not and exits 1. The end-to-end checks run it on every .pvd a
-// run writes.
+// squeal-check-pvd FILE.pvd [--allow-empty] [FIELD ...]: opens a ParaView
+// collection the way ParaView does, through VTK's XML readers: every
+// DataSet it lists must exist and load (vtkXMLGenericDataObjectReader: .vtu,
+// .pvtu and their pieces) without a VTK error, hold points, and carry every
+// named point-data FIELD; a collection without a DataSet fails unless
+// --allow-empty is given (Output/Mode shapes = none). Prints "FILE: N
+// entries load" and exits 0, or names the first entry that does not and
+// exits 1. The end-to-end checks run it on every .pvd a run writes.
 
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
@@ -42,9 +43,12 @@ int
 main(int argc, char **argv)
 {
   if (argc < 2)
-    return fail("usage: squeal-check-pvd FILE.pvd [FIELD ...]");
-  const std::filesystem::path    pvd = argv[1];
-  const std::vector<std::string> fields(argv + 2, argv + argc);
+    return fail("usage: squeal-check-pvd FILE.pvd [--allow-empty] [FIELD ...]");
+  const std::filesystem::path pvd = argv[1];
+  std::vector<std::string>    fields(argv + 2, argv + argc);
+  const bool allow_empty = !fields.empty() && fields[0] == "--allow-empty";
+  if (allow_empty)
+    fields.erase(fields.begin());
   auto error = vtkSmartPointer<vtkCallbackCommand>::New();
   error->SetCallback(on_error);
 
@@ -83,7 +87,7 @@ main(int argc, char **argv)
           return fail(file.string() + " has no point field " + field);
       ++n_entries;
     }
-  if (n_entries == 0)
+  if (n_entries == 0 && !allow_empty)
     return fail(pvd.string() + " lists no DataSet");
   std::cout << pvd.filename().string() << ": " << n_entries << " entries load"
             << std::endl;
