@@ -33,8 +33,8 @@ namespace squeal
       // the frictionless modes and their names, once per point
       struct Basis
       {
-        eigen::FrictionlessModes modes;
-        std::vector<std::string> names;
+        eigen::FrictionlessModes            modes;
+        std::map<unsigned int, std::string> names; ///< of the listed ones
       };
       std::map<unsigned int, Basis> bases;
       if (regions.empty())
@@ -64,16 +64,21 @@ namespace squeal
               Basis b;
               b.modes = eigen::frictionless_modes(
                 model->parts(), pt.values, band, band.basis_factor, quiet);
-              for (const auto &phi : b.modes.shape)
-                {
-                  physics::PETScVector zero(phi);
-                  zero = 0.;
-                  b.names.push_back(describe_mode(pt.values, phi, zero));
-                }
               bases.emplace(p, std::move(b));
             }
-          const Basis &b = bases.at(p);
-          const auto   c = eigen::modal_contributions(b.modes, x);
+          Basis &b = bases.at(p);
+          // names only for the modes that are listed (collective: every
+          // rank takes the same contributors)
+          const auto name = [&](const unsigned int i) -> const std::string & {
+            if (b.names.count(i) == 0)
+              {
+                physics::PETScVector zero(b.modes.shape[i]);
+                zero       = 0.;
+                b.names[i] = describe_mode(pt.values, b.modes.shape[i], zero);
+              }
+            return b.names[i];
+          };
+          const auto c = eigen::modal_contributions(b.modes, x);
           // the contributors by share, those above 1 % (at most 10)
           std::vector<unsigned int> order(c.coefficient.size());
           std::iota(order.begin(), order.end(), 0u);
@@ -97,15 +102,15 @@ namespace squeal
                   << pt.values.get(second.name) << ',' << k << ','
                   << pt.lambda[k].imag() / (2 * M_PI) << ','
                   << pt.lambda[k].real() << ',' << c.captured << ',' << r << ','
-                  << i << ',' << b.modes.frequency[i] << ",\"" << b.names[i]
+                  << i << ',' << b.modes.frequency[i] << ",\"" << name(i)
                   << "\"," << share << ',' << c.coefficient[i].real() << ','
                   << c.coefficient[i].imag();
               contribution_rows.push_back(row.str());
               if (r < 3)
                 line << (r == 0 ? " " : ", ") << i << " ("
                      << std::setprecision(5) << b.modes.frequency[i] << " Hz, "
-                     << b.names[i] << ") " << std::setprecision(3)
-                     << 100 * share << " %";
+                     << name(i) << ") " << std::setprecision(3) << 100 * share
+                     << " %";
             }
           pcout << line.str() << std::endl;
         }

@@ -40,12 +40,10 @@ def every_pvd_loads(squeal, out):
     for folder, _, files in os.walk(out):
         for f in sorted(files):
             if f.endswith(".pvd"):
-                tool = os.path.join(os.path.dirname(squeal), "squeal-check-pvd")
-                r = subprocess.run([tool, os.path.join(folder, f),
-                                    "--allow-empty"],
-                                   capture_output=True, text=True)
-                if r.returncode != 0:
-                    print(f"FAILED: {r.stdout}{r.stderr}")
+                ok, said = pvd_loads(squeal, os.path.join(folder, f),
+                                     ("--allow-empty",))
+                if not ok:
+                    print(f"FAILED: {said}")
                     sys.exit(1)
 
 
