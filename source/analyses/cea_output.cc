@@ -262,37 +262,7 @@ namespace squeal
       const physics::PETScVector    &im,
       std::vector<double>           *shares) const
     {
-      // kinetic-energy shares with the whole mass of the point (every body
-      // at its density)
-      const std::vector<double> e =
-        physics::kinetic_energy_by_body(*model, values, re, im);
-      const auto &bodies = model->scene->bodies;
-      const auto  share  = [&](const scene::Body &b) {
-        return b.id < e.size() ? e[b.id] : 0.;
-      };
-      double total = 0.;
-      for (const scene::Body &b : bodies)
-        total += share(b);
-      if (shares != nullptr)
-        {
-          shares->clear();
-          for (const scene::Body &b : bodies)
-            shares->push_back(share(b) / total);
-        }
-      // a disc carrying more than half the energy names the mode (s,n+-);
-      // otherwise the body carrying most besides the disc
-      const scene::Body *disc = model->scene->disc();
-      if (disc != nullptr && share(*disc) > 0.5 * total)
-        return disc_mode_name(*model, *disc, re, im);
-      std::string name;
-      double      most = -1.;
-      for (const scene::Body &b : bodies)
-        if (&b != disc && share(b) > most)
-          {
-            most = share(b);
-            name = b.name;
-          }
-      return name;
+      return mode_name(*model, values, re, im, shares);
     }
 
     void

@@ -3,6 +3,7 @@
 
 #include <squeal/analyses/braking.h>
 #include <squeal/analyses/cea.h>
+#include <squeal/analyses/model_updating.h>
 #include <squeal/analyses/preload.h>
 #include <squeal/analyses/run.h>
 #include <squeal/io/mesh_file.h>
@@ -295,6 +296,35 @@ namespace squeal
       }
     } // namespace
 
+    namespace
+    {
+      // The sweep's names and values against the scene (CEA, braking
+      // grid), or the fitted parameters' names (model updating).
+      // @throws std::runtime_error as scene::sweep_points() and
+      // Scene::parameter().
+      void
+      check_sweep_or_updating(const scene::Scene              &scene,
+                              const parameters::AllParameters &prm)
+      {
+        const auto &analysis = prm.scene.analysis;
+        if (analysis == "model updating")
+          for (const auto &q :
+               parse_updating_parameters(prm.updating.parameters))
+            try
+              {
+                scene.parameter(q.name);
+              }
+            catch (const std::runtime_error &e)
+              {
+                throw std::runtime_error("Model updating/Parameters: " +
+                                         std::string(e.what()));
+              }
+        else if (analysis != "preload" &&
+                 (analysis != "braking" || prm.transient.grid))
+          scene::sweep_points(scene, prm.sweep);
+      }
+    } // namespace
+
     void
     validate_or_export(const CommandLine               &cl,
                        const parameters::AllParameters &prm,
@@ -310,9 +340,7 @@ namespace squeal
       // run's size against the machine
       scene::check_parameter_ranges(*scene);
       check_run_size(prm);
-      if (prm.scene.analysis != "preload" &&
-          (prm.scene.analysis != "braking" || prm.transient.grid))
-        scene::sweep_points(*scene, prm.sweep);
+      check_sweep_or_updating(*scene, prm);
       if (!cl.export_mesh.empty())
         {
           if (fs::exists(cl.export_mesh) && !cl.overwrite)
@@ -375,9 +403,7 @@ namespace squeal
         check_run_size(prm);
         const auto scene = scene::make_scene(prm);
         scene::check_parameter_ranges(*scene);
-        if (prm.scene.analysis != "preload" &&
-            (prm.scene.analysis != "braking" || prm.transient.grid))
-          scene::sweep_points(*scene, prm.sweep);
+        check_sweep_or_updating(*scene, prm);
       }
       std::string failure;
       if (prm.scene.analysis == "braking" && prm.transient.grid)
@@ -401,6 +427,9 @@ namespace squeal
       else if (prm.scene.analysis == "preload")
         failure = run_caught<PreloadAnalysis>(
           prm, handler, comm, [](PreloadAnalysis &a) { a.run(); });
+      else if (prm.scene.analysis == "model updating")
+        failure = run_caught<ModelUpdatingAnalysis>(
+          prm, handler, comm, [](ModelUpdatingAnalysis &a) { a.run(); });
       else // cea, preloaded cea
         failure = run_caught<ComplexEigenvalueAnalysis>(
           prm, handler, comm, [](ComplexEigenvalueAnalysis &a) { a.run(); });

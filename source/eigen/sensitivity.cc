@@ -78,19 +78,12 @@ namespace squeal
     }
 
 
-    std::vector<EigenvalueSensitivity>
-    eigenvalue_sensitivities(const physics::MatrixParts     &model,
-                             const parameters::ScalarPoint  &p,
-                             const std::vector<std::string> &names,
-                             const std::vector<EigenPair>   &right,
-                             const std::vector<EigenPair>   &left)
+    std::vector<physics::MatrixParts::Combination>
+    coefficient_slopes(const physics::MatrixParts     &model,
+                       const parameters::ScalarPoint  &p,
+                       const std::vector<std::string> &names)
     {
-      if (right.size() != left.size())
-        throw std::logic_error(
-          "sensitivities: " + std::to_string(right.size()) + " right but " +
-          std::to_string(left.size()) + " left eigenvectors");
-      using Combination    = physics::MatrixParts::Combination;
-      const Combination at = model.coefficients(p);
+      using Combination = physics::MatrixParts::Combination;
       // each coefficient is affine in each single parameter, so a central
       // difference of any step is its exact derivative
       std::vector<Combination> slope;
@@ -109,13 +102,36 @@ namespace squeal
           down.set(name, value - h / 2);
           Combination       d  = model.coefficients(up);
           const Combination lo = model.coefficients(down);
-          for (auto [a, b] : {std::pair{&d.mass, &lo.mass},
-                              std::pair{&d.damping, &lo.damping},
-                              std::pair{&d.stiffness, &lo.stiffness}})
+          for (auto [a, b] :
+               {std::pair{&d.mass, &lo.mass},
+                std::pair{&d.damping, &lo.damping},
+                std::pair{&d.stiffness, &lo.stiffness},
+                std::pair{&d.structural, &lo.structural},
+                std::pair{&d.symmetric_stiffness, &lo.symmetric_stiffness},
+                std::pair{&d.springs, &lo.springs}})
             for (unsigned int k = 0; k < a->size(); ++k)
               (*a)[k] = ((*a)[k] - (*b)[k]) / h;
           slope.push_back(std::move(d));
         }
+      return slope;
+    }
+
+
+    std::vector<EigenvalueSensitivity>
+    eigenvalue_sensitivities(const physics::MatrixParts     &model,
+                             const parameters::ScalarPoint  &p,
+                             const std::vector<std::string> &names,
+                             const std::vector<EigenPair>   &right,
+                             const std::vector<EigenPair>   &left)
+    {
+      if (right.size() != left.size())
+        throw std::logic_error(
+          "sensitivities: " + std::to_string(right.size()) + " right but " +
+          std::to_string(left.size()) + " left eigenvectors");
+      using Combination                 = physics::MatrixParts::Combination;
+      const Combination              at = model.coefficients(p);
+      const std::vector<Combination> slope =
+        coefficient_slopes(model, p, names);
 
       std::vector<EigenvalueSensitivity> result;
       PETScVector Px(right.empty() ? PETScVector() : right[0].re);

@@ -452,5 +452,81 @@ namespace squeal
               " Hz) must be below Eigensolver/Maximum frequency (" +
               str(f_max) + " Hz)");
     }
+    void
+    ModelUpdating::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Model updating");
+      prm.declare_entry(
+        "Parameters",
+        parameters,
+        Patterns::Anything(),
+        "The named scene parameters to fit (squeal --validate lists a "
+        "scene's), each with its bounds in its unit: `name: lower, upper` "
+        "(fitted on a log scale, lower > 0) or `name: lower, upper, linear`, "
+        "separated by `;`. Example: `pad.E: 1e8, 1e11; support.rho: 7000, "
+        "8500, linear`.");
+      prm.declare_entry(
+        "Targets",
+        targets,
+        Patterns::Anything(),
+        "CSV of the measured modes (relative to this file): a header line, "
+        "then per mode `label,frequency_Hz,weight,name` followed, when "
+        "Measurement points is set, by one shape value per measurement "
+        "point (or none). weight > 0 (empty: 1) divides the frequency's "
+        "variance; name pairs the mode with a model mode of that name "
+        "(a disc mode (n,m+-) or a body; empty: by shape, else by "
+        "frequency). Quote fields holding commas.");
+      prm.declare_entry(
+        "Measurement points",
+        measurement_points,
+        Patterns::Anything(),
+        "CSV of the measurement points (relative to this file; empty: "
+        "none): a header line, then per point `label,x,y,z,dx,dy,dz` "
+        "[m, and a direction of any length]: the measured shapes are the "
+        "displacement at the point along the direction.");
+      prm.declare_entry("Measurement error",
+                        str(measurement_error),
+                        Patterns::Double(1e-12, 1.),
+                        "Relative standard deviation of a measured "
+                        "frequency of weight 1 [-]: scales the residuals and "
+                        "gives the fitted parameters' uncertainty.");
+      prm.declare_entry("Maximum iterations",
+                        std::to_string(max_iterations),
+                        Patterns::Integer(0, 1000),
+                        "Levenberg-Marquardt steps at most (each one "
+                        "symmetric eigensolve of the full model).");
+      prm.declare_entry("MAC threshold",
+                        str(mac_threshold),
+                        Patterns::Double(0.01, 1.),
+                        "Least MAC of a measured and a model shape that "
+                        "may be paired.");
+      prm.declare_entry("Frequency window",
+                        str(frequency_window),
+                        Patterns::Double(1e-6, 10.),
+                        "Largest relative frequency distance of a pairing "
+                        "without shape or name [-].");
+      prm.declare_entry("Maximum frequency",
+                        str(maximum_frequency),
+                        Patterns::Double(0.),
+                        "Highest model mode computed [Hz] (every mode below "
+                        "it, counted by Sylvester inertia); 0: 1.5 times the "
+                        "highest measured frequency.");
+      prm.leave_subsection();
+    }
+
+    void
+    ModelUpdating::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Model updating");
+      parameters         = prm.get("Parameters");
+      targets            = prm.get("Targets");
+      measurement_points = prm.get("Measurement points");
+      measurement_error  = prm.get_double("Measurement error");
+      max_iterations     = prm.get_integer("Maximum iterations");
+      mac_threshold      = prm.get_double("MAC threshold");
+      frequency_window   = prm.get_double("Frequency window");
+      maximum_frequency  = prm.get_double("Maximum frequency");
+      prm.leave_subsection();
+    }
   } // namespace parameters
 } // namespace squeal

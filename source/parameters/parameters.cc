@@ -116,6 +116,7 @@ namespace squeal
       preload.declare_parameters(prm);
       transient.declare_parameters(prm);
       output.declare_parameters(prm);
+      updating.declare_parameters(prm);
     }
 
     void
@@ -133,6 +134,7 @@ namespace squeal
       preload.parse_parameters(prm);
       transient.parse_parameters(prm);
       output.parse_parameters(prm);
+      updating.parse_parameters(prm);
       check(mesh.contact_refinements == 0 || scene.analysis == "preloaded cea",
             "Mesh/Contact refinements = " +
               std::to_string(mesh.contact_refinements) +
@@ -141,6 +143,11 @@ namespace squeal
               scene.analysis +
               "); without a preload set it to 0 and refine the disc track "
               "by geometry with Mesh/Disc refinements under pad");
+      check(scene.analysis != "model updating" ||
+              (!updating.parameters.empty() && !updating.targets.empty()),
+            "Scene/Analysis = model updating needs Model updating/Parameters "
+            "(the named parameters to fit, with bounds) and Model "
+            "updating/Targets (the CSV of measured modes)");
       check(output.sensitivities == "none" || eigensolver.method == "full",
             "Output/Sensitivities = " + output.sensitivities +
               " needs Eigensolver/Method = full (it is " + eigensolver.method +
@@ -276,6 +283,34 @@ namespace squeal
       }
     } // namespace
 
+    namespace
+    {
+      /// "Section/entry" -> the parameter file that set it last, of the
+      /// last parse_file()
+      std::map<std::string, std::string> &
+      setters()
+      {
+        static std::map<std::string, std::string> map;
+        return map;
+      }
+
+      /// @p path (a file name given in an entry) made absolute against the
+      /// folder of the parameter file that set the entry @p key (the top
+      /// file @p top if unknown)
+      std::string
+      beside_setter(const std::string &path,
+                    const std::string &key,
+                    const std::string &top)
+      {
+        const auto        it   = setters().find(key);
+        const std::string file = it == setters().end() ? top : it->second;
+        return std::filesystem::absolute(
+                 std::filesystem::path(file).parent_path() / path)
+          .lexically_normal()
+          .string();
+      }
+    } // namespace
+
     void
     register_input(const std::string &file)
     {
@@ -313,6 +348,9 @@ namespace squeal
           throw std::runtime_error("in parameter file '" + filename +
                                    "': " + one_line(e));
         }
+      setters().clear();
+      for (const auto &[key, where] : scan.set_at)
+        setters()[key] = where.first;
       if (scan.n_entries == 0)
         throw std::runtime_error(
           "parameter file '" + filename +
@@ -334,16 +372,14 @@ namespace squeal
           throw std::runtime_error("in parameter file '" + filename +
                                    "': " + e.what());
         }
-      // A relative mesh path is the parameter file's neighbour: made
+      // A relative mesh path is the neighbour of the parameter file that
+      // sets it (the file given or one it includes): made
       // absolute here, and in the handler, so that the copy of the
       // parameters a run writes (and --resume reads) finds it too.
       auto &mesh = scene.mesh_file.file;
       if (!mesh.empty() && std::filesystem::path(mesh).is_relative())
         {
-          mesh = std::filesystem::absolute(
-                   std::filesystem::path(filename).parent_path() / mesh)
-                   .lexically_normal()
-                   .string();
+          mesh = beside_setter(mesh, "Scene/Mesh file/File", filename);
           prm.enter_subsection("Scene");
           prm.enter_subsection("Mesh file");
           prm.set("File", mesh);
@@ -351,6 +387,23 @@ namespace squeal
           prm.leave_subsection();
         }
       register_input(mesh);
+      // the updating's measured data are the parameter file's neighbours
+      prm.enter_subsection("Model updating");
+      for (auto [entry, path] :
+           {std::pair{"Targets", &updating.targets},
+            std::pair{"Measurement points", &updating.measurement_points}})
+        if (!path->empty())
+          {
+            if (std::filesystem::path(*path).is_relative())
+              {
+                *path = beside_setter(*path,
+                                      std::string("Model updating/") + entry,
+                                      filename);
+                prm.set(entry, *path);
+              }
+            register_input(*path);
+          }
+      prm.leave_subsection();
     }
   } // namespace parameters
 } // namespace squeal

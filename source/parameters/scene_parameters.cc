@@ -167,7 +167,7 @@ namespace squeal
       prm.declare_entry("Analysis",
                         analysis,
                         Patterns::Selection(
-                          "cea|preload|preloaded cea|braking"),
+                          "cea|preload|preloaded cea|braking|model updating"),
                         "cea: complex eigenvalue analysis over the sweep; "
                         "preload: the static frictional contact of the pad "
                         "on the disc under Preload/Normal force (mortar "
@@ -176,8 +176,12 @@ namespace squeal
                         "nominal parameters, then the CEA with the interface "
                         "stiffness and friction coupling only where the pad "
                         "stayed in contact (serial); braking: the transient "
-                        "braking simulation (subsection Transient). All but "
-                        "cea need a scene with one contact pair and one load.");
+                        "braking simulation (subsection Transient); model "
+                        "updating: the named parameters of subsection Model "
+                        "updating fitted to measured natural frequencies of "
+                        "the frictionless assembly. Preload, preloaded cea "
+                        "and braking need a scene with one contact pair and "
+                        "one load.");
       mesh_file.declare_parameters(prm);
       prm.leave_subsection();
     }

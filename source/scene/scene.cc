@@ -513,7 +513,7 @@ namespace squeal
                        const std::string &analysis,
                        const bool         seeded)
     {
-      if (analysis == "cea")
+      if (analysis == "cea" || analysis == "model updating")
         return;
       const std::string what = "Scene/Analysis = " + analysis + " needs ";
       if (scene.contact_pairs.empty())

@@ -22,6 +22,48 @@ namespace squeal
       /// the cost of a forbidden pairing in the assignment
       constexpr double forbidden = 1e6;
 
+      /// relative gap below which model frequencies count as repeated
+      constexpr double repeated = 1e-6;
+
+      /**
+       * The MAC of the measured shape @p t with model mode @p k, or with
+       * the span of its group of repeated frequencies (the modes from
+       * group_start[k] with the same group_start): |P t|^2 / |t|^2, P the
+       * orthogonal projector on the span.
+       */
+      double
+      subspace_mac(const std::vector<double>       &t,
+                   const ModelModes                &modes,
+                   const std::vector<unsigned int> &group_start,
+                   const unsigned int               k)
+      {
+        std::vector<unsigned int> group;
+        for (unsigned int l = group_start[k];
+             l < modes.frequency.size() && group_start[l] == group_start[k];
+             ++l)
+          group.push_back(l);
+        if (group.size() == 1)
+          return eigen::complex_mac(
+            std::vector<std::complex<double>>(t.begin(), t.end()),
+            std::vector<std::complex<double>>(modes.shape[k].begin(),
+                                              modes.shape[k].end()));
+        const Eigen::Map<const Eigen::VectorXd> tv(t.data(), t.size());
+        Eigen::MatrixXd                         S(t.size(), group.size());
+        for (unsigned int g = 0; g < group.size(); ++g)
+          S.col(g) =
+            Eigen::Map<const Eigen::VectorXd>(modes.shape[group[g]].data(),
+                                              t.size());
+        const double tt = tv.squaredNorm();
+        if (!(tt > 0.) || !(S.norm() > 0.))
+          return 0.;
+        // the projection by an orthonormal basis of the span (column-pivoted
+        // QR drops dependent shapes)
+        const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(S);
+        const Eigen::MatrixXd                             Q =
+          Eigen::MatrixXd(qr.householderQ()).leftCols(qr.rank());
+        return (Q.transpose() * tv).squaredNorm() / tt;
+      }
+
       /** Whether the model modes carry shapes of length @p n. */
       bool
       model_has_shapes(const ModelModes &modes, const std::size_t n)
@@ -139,6 +181,16 @@ namespace squeal
           }
       if (any_shape)
         result.mac_matrix = Eigen::MatrixXd::Constant(m, n, -1.);
+      // repeated model frequencies (a symmetric body's doublets): any
+      // combination of the group's shapes is a mode, so a measured shape is
+      // compared with the group's span
+      std::vector<unsigned int> group_start(n);
+      for (unsigned int k = 0; k < n; ++k)
+        group_start[k] =
+          k > 0 && std::abs(modes.frequency[k] - modes.frequency[k - 1]) <=
+                     repeated * std::abs(modes.frequency[k]) ?
+            group_start[k - 1] :
+            k;
       Eigen::MatrixXd cost(m, n);
       for (unsigned int i = 0; i < m; ++i)
         {
@@ -150,11 +202,8 @@ namespace squeal
               double c = distance;
               if (!t.shape.empty())
                 {
-                  const double mac = eigen::complex_mac(
-                    std::vector<std::complex<double>>(t.shape.begin(),
-                                                      t.shape.end()),
-                    std::vector<std::complex<double>>(modes.shape[k].begin(),
-                                                      modes.shape[k].end()));
+                  const double mac =
+                    subspace_mac(t.shape, modes, group_start, k);
                   result.mac_matrix(i, k) = mac;
                   // the frequency breaks ties between equal shapes (a
                   // doublet's twins)

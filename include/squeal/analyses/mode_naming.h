@@ -15,6 +15,7 @@
 #include <squeal/scene/scene.h>
 
 #include <string>
+#include <vector>
 
 namespace squeal
 {
@@ -39,6 +40,23 @@ namespace squeal
                    const scene::Body              &disc,
                    const physics::PETScVector     &re,
                    const physics::PETScVector     &im);
+
+    /**
+     * The name of the mode re + i im of @p model at the parameter point
+     * @p values: disc_mode_name() when the scene's disc carries more than
+     * half of the mode's kinetic energy, else the name of the body that
+     * carries the most of it besides the disc. With @p shares, each body's
+     * share of the kinetic energy in [0, 1] (scene order, summing to 1).
+     * Collective over the model's communicator.
+     * @param re, im the mode's real and imaginary parts (n_dofs, locally
+     * owned entries) [m, any scale]
+     */
+    std::string
+    mode_name(const physics::StructuralModel &model,
+              const parameters::ScalarPoint  &values,
+              const physics::PETScVector     &re,
+              const physics::PETScVector     &im,
+              std::vector<double>            *shares = nullptr);
   } // namespace analyses
 } // namespace squeal
 

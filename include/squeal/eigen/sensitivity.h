@@ -85,6 +85,23 @@ namespace squeal
                       const std::vector<EigenPair>  &right,
                       dealii::ConditionalOStream    &pcout);
 
+    /**
+     * The derivatives d c / d p of every coefficient of @p model's
+     * combinations (MatrixParts::Combination: M, C, K, K_s, K_s + K_n and
+     * the springs) at @p p, one Combination per parameter of @p names, in
+     * their units' inverse (a part's coefficient per unit of p). Exact: each
+     * coefficient is affine in every single parameter, so a central
+     * difference of MatrixParts::coefficients() with a step of the
+     * parameter's size is its derivative.
+     * @throws std::runtime_error if a name is not a parameter of @p p, or
+     *   if the model holds it fixed (MatrixParts::fixed: build the model
+     *   varying it).
+     */
+    std::vector<physics::MatrixParts::Combination>
+    coefficient_slopes(const physics::MatrixParts     &model,
+                       const parameters::ScalarPoint  &p,
+                       const std::vector<std::string> &names);
+
     /** The derivatives of one eigenvalue. */
     struct EigenvalueSensitivity
     {

@@ -63,7 +63,8 @@ namespace squeal
       /// `cea`: complex eigenvalue analysis (sweep); `preload`: the static
       /// frictional contact of the pad on the disc under the normal load;
       /// `preloaded cea`: the preload, then the CEA on its contact area;
-      /// `braking`: the transient braking simulation
+      /// `braking`: the transient braking simulation; `model updating`:
+      /// the fit of named parameters to measured modes
       std::string   analysis = "cea";
       MeshFileScene mesh_file; ///< subsection Mesh file
       /** Declares the subsection's entries: defaults, ranges, help (SI units).
@@ -474,21 +475,52 @@ namespace squeal
       parse_parameters(ParameterHandler &prm);
     };
 
+    /**
+     * Model updating (Scene/Analysis = model updating,
+     * updating/model_updating.h): the named scene parameters fitted to
+     * measured natural frequencies (and shapes) of the frictionless
+     * assembly.
+     */
+    struct ModelUpdating
+    {
+      /// `name: lower, upper[, linear]; ...`: the fitted named parameters
+      /// with their bounds [their units]; log scale unless `linear`
+      std::string parameters;
+      /// CSV of the measured modes (absolute after AllParameters::read())
+      std::string targets;
+      /// CSV of the measurement points and directions ("": no shapes)
+      std::string measurement_points;
+      double      measurement_error = 0.01; ///< relative std of a frequency [-]
+      unsigned int max_iterations   = 30;   ///< Levenberg-Marquardt steps
+      double       mac_threshold    = 0.6;  ///< least MAC of a pairing by shape
+      double       frequency_window = 0.5;  ///< relative, pairing by frequency
+      /// Hz, the highest model mode computed; 0: 1.5 x the highest target
+      double maximum_frequency = 0.;
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter when a value is not allowed. */
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     /** All parameters of a run. */
     struct AllParameters
     {
-      Scene       scene;       ///< subsection Scene
-      Geometry    geometry;    ///< subsection Geometry
-      Mesh        mesh;        ///< subsection Mesh
-      Materials   materials;   ///< subsection Materials
-      Springs     springs;     ///< subsection Springs
-      Damping     damping;     ///< subsection Damping
-      Interface   interface;   ///< subsection Interface
-      Eigensolver eigensolver; ///< subsection Eigensolver
-      Sweep       sweep;       ///< subsection Sweep
-      Preload     preload;     ///< subsection Preload
-      Transient   transient;   ///< subsection Transient
-      Output      output;      ///< subsection Output
+      Scene         scene;       ///< subsection Scene
+      Geometry      geometry;    ///< subsection Geometry
+      Mesh          mesh;        ///< subsection Mesh
+      Materials     materials;   ///< subsection Materials
+      Springs       springs;     ///< subsection Springs
+      Damping       damping;     ///< subsection Damping
+      Interface     interface;   ///< subsection Interface
+      Eigensolver   eigensolver; ///< subsection Eigensolver
+      Sweep         sweep;       ///< subsection Sweep
+      Preload       preload;     ///< subsection Preload
+      Transient     transient;   ///< subsection Transient
+      Output        output;      ///< subsection Output
+      ModelUpdating updating;    ///< subsection Model updating
 
       /** Declares every subsection with defaults, ranges and help. */
       void

@@ -116,10 +116,12 @@ namespace squeal
     /**
      * Pairs every target with one model mode, one to one, by the optimal
      * assignment: a target with a shape (and model shapes of its length)
-     * by cost 1 - MAC, modes below Options::mac_threshold forbidden; a
-     * target with a name among the modes of that name by relative
-     * frequency distance; any other by relative frequency distance within
-     * Options::frequency_window.
+     * by cost 1 - MAC, modes below Options::mac_threshold forbidden (a
+     * mode whose frequency repeats to 1e-6, as a symmetric body's doublet,
+     * by the MAC with the span of its group's shapes, since any
+     * combination of them is a mode); a target with a name among the modes of
+     * that name by relative frequency distance; any other by relative frequency
+     * distance within Options::frequency_window.
      * @throws std::runtime_error naming the target that has no admissible
      *   mode (its best MAC, or that no mode has its name), and if a
      *   target's shape length differs from the model's.

@@ -1,0 +1,660 @@
+// The model updating analysis (see model_updating.h): the measured data
+// read, the frictionless assembly's modes and their exact frequency
+// sensitivities at each Levenberg-Marquardt step, the measurement points
+// located in the mesh, and the results written.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <squeal/analyses/mode_naming.h>
+#include <squeal/analyses/model_updating.h>
+#include <squeal/contact/scene_contact.h>
+#include <squeal/eigen/modal_contribution.h>
+#include <squeal/eigen/sensitivity.h>
+#include <squeal/io/output_directory.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace squeal
+{
+  namespace analyses
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      /** The fields of one CSV line; a field in double quotes may hold
+       * commas (a doubled quote inside is one quote). */
+      std::vector<std::string>
+      csv_fields(const std::string &line)
+      {
+        std::vector<std::string> fields(1);
+        bool                     quoted = false;
+        for (std::size_t i = 0; i < line.size(); ++i)
+          {
+            const char c = line[i];
+            if (c == '"')
+              {
+                if (quoted && i + 1 < line.size() && line[i + 1] == '"')
+                  fields.back() += '"', ++i;
+                else
+                  quoted = !quoted;
+              }
+            else if (c == ',' && !quoted)
+              fields.emplace_back();
+            else if (c != '\r')
+              fields.back() += c;
+          }
+        for (auto &f : fields)
+          {
+            const auto first = f.find_first_not_of(" \t");
+            const auto last  = f.find_last_not_of(" \t");
+            f                = first == std::string::npos ? "" :
+                                                            f.substr(first, last - first + 1);
+          }
+        return fields;
+      }
+
+      /** The data lines of a CSV file (after its header; blank lines and
+       * lines starting with # skipped) with their line numbers. */
+      std::vector<std::pair<unsigned int, std::vector<std::string>>>
+      csv_rows(const std::string &file, const std::string &what)
+      {
+        std::ifstream in(file);
+        if (!in)
+          throw std::runtime_error("cannot open " + what + " '" + file + "'");
+        std::vector<std::pair<unsigned int, std::vector<std::string>>> rows;
+        std::string                                                    line;
+        unsigned int number = 0;
+        bool         header = true;
+        while (std::getline(in, line))
+          {
+            ++number;
+            if (line.find_first_not_of(" \t\r") == std::string::npos ||
+                line[line.find_first_not_of(" \t")] == '#')
+              continue;
+            if (header)
+              {
+                header = false;
+                continue;
+              }
+            rows.emplace_back(number, csv_fields(line));
+          }
+        if (rows.empty())
+          throw std::runtime_error(what + " '" + file +
+                                   "' holds no data line after its header");
+        return rows;
+      }
+
+      /** @p field as a number, or an error naming file, line and column. */
+      double
+      number(const std::string &field,
+             const std::string &file,
+             const unsigned int line,
+             const std::string &column)
+      {
+        std::size_t used = 0;
+        double      value;
+        try
+          {
+            value = std::stod(field, &used);
+          }
+        catch (const std::exception &)
+          {
+            used = 0;
+          }
+        if (used == 0 || used != field.size() || !std::isfinite(value))
+          throw std::runtime_error("'" + file + "', line " +
+                                   std::to_string(line) + ": " + column +
+                                   " = '" + field + "' is not a number");
+        return value;
+      }
+    } // namespace
+
+
+    std::vector<MeasurementPoint>
+    read_measurement_points(const std::string &file)
+    {
+      std::vector<MeasurementPoint> points;
+      for (const auto &[line, f] : csv_rows(file,
+                                            "Model updating/Measurement "
+                                            "points file"))
+        {
+          if (f.size() != 7)
+            throw std::runtime_error(
+              "'" + file + "', line " + std::to_string(line) + ": " +
+              std::to_string(f.size()) +
+              " fields; a measurement point is label,x,y,z,dx,dy,dz");
+          MeasurementPoint p;
+          p.label                    = f[0];
+          const char *const column[] = {"x", "y", "z", "dx", "dy", "dz"};
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              p.x[d]         = number(f[1 + d], file, line, column[d]);
+              p.direction[d] = number(f[4 + d], file, line, column[3 + d]);
+            }
+          if (!(p.direction.norm() > 0.))
+            throw std::runtime_error("'" + file + "', line " +
+                                     std::to_string(line) +
+                                     ": the direction (dx,dy,dz) is zero");
+          p.direction /= p.direction.norm();
+          points.push_back(p);
+        }
+      return points;
+    }
+
+    std::vector<updating::Target>
+    read_targets(const std::string &file, const unsigned int n_points)
+    {
+      std::vector<updating::Target> targets;
+      std::set<std::string>         labels;
+      for (const auto &[line, f] :
+           csv_rows(file, "Model updating/Targets file"))
+        {
+          const std::string at = "'" + file + "', line " + std::to_string(line);
+          if (f.size() < 2)
+            throw std::runtime_error(at + ": a measured mode is "
+                                          "label,frequency_Hz,weight,name[,"
+                                          "shape values]");
+          updating::Target t;
+          t.label     = f[0];
+          t.frequency = number(f[1], file, line, "frequency_Hz");
+          if (f.size() > 2 && !f[2].empty())
+            t.weight = number(f[2], file, line, "weight");
+          if (f.size() > 3)
+            t.name = f[3];
+          for (unsigned int i = 4; i < f.size(); ++i)
+            t.shape.push_back(
+              number(f[i], file, line, "shape value " + std::to_string(i - 3)));
+          if (!(t.frequency > 0.) || !(t.weight > 0.))
+            throw std::runtime_error(at + ": frequency_Hz and weight must be "
+                                          "> 0");
+          if (!t.shape.empty() && t.shape.size() != n_points)
+            throw std::runtime_error(
+              at + ": " + std::to_string(t.shape.size()) +
+              " shape values; give one per measurement point (" +
+              std::to_string(n_points) + ") or none");
+          if (t.label.empty() || !labels.insert(t.label).second)
+            throw std::runtime_error(at + ": the label '" + t.label +
+                                     "' is empty or given twice");
+          targets.push_back(std::move(t));
+        }
+      return targets;
+    }
+
+    std::vector<updating::Parameter>
+    parse_updating_parameters(const std::string &text)
+    {
+      std::vector<updating::Parameter> result;
+      std::istringstream               items(text);
+      for (std::string item; std::getline(items, item, ';');)
+        {
+          if (item.find_first_not_of(" \t") == std::string::npos)
+            continue;
+          const std::string where =
+            "Model updating/Parameters, item '" + item + "'";
+          const auto colon = item.find(':');
+          if (colon == std::string::npos)
+            throw std::runtime_error(where + ": write it `name: lower, upper` "
+                                             "or `name: lower, upper, linear`");
+          updating::Parameter q;
+          q.name       = csv_fields(item.substr(0, colon))[0];
+          const auto f = csv_fields(item.substr(colon + 1));
+          if (f.size() < 2 || f.size() > 3 ||
+              (f.size() == 3 && f[2] != "linear" && f[2] != "log"))
+            throw std::runtime_error(where + ": after the name give `lower, "
+                                             "upper` and optionally `linear`");
+          for (unsigned int b = 0; b < 2; ++b)
+            {
+              std::size_t used = 0;
+              double      v    = 0.;
+              try
+                {
+                  v = std::stod(f[b], &used);
+                }
+              catch (const std::exception &)
+                {
+                  used = 0;
+                }
+              if (used == 0 || used != f[b].size())
+                throw std::runtime_error(where + ": the bound '" + f[b] +
+                                         "' is not a number");
+              (b == 0 ? q.lower : q.upper) = v;
+            }
+          q.log_scale = f.size() < 3 || f[2] == "log";
+          result.push_back(q);
+        }
+      if (result.empty())
+        throw std::runtime_error("Model updating/Parameters names no "
+                                 "parameter");
+      return result;
+    }
+
+
+    PointObservation::PointObservation(
+      const physics::StructuralModel      &model,
+      const std::vector<MeasurementPoint> &points)
+      : rows(points.size())
+      , comm(model.comm)
+    {
+      using Row = std::vector<std::pair<types::global_dof_index, double>>;
+      // each point's row is made by the rank owning its cell (its
+      // constraints know that cell's DoFs) and sent to all
+      std::vector<std::pair<unsigned int, Row>> mine;
+      const FiniteElement<3>                   &fe = model.fe;
+      for (unsigned int i = 0; i < points.size(); ++i)
+        {
+          std::pair<DoFHandler<3>::active_cell_iterator, Point<3>> found;
+          bool                                                     ok = false;
+          for (const double tolerance : {1e-10, 1e-3})
+            {
+              try
+                {
+                  found =
+                    GridTools::find_active_cell_around_point(model.mapping,
+                                                             model.dof_handler,
+                                                             points[i].x,
+                                                             {},
+                                                             tolerance);
+                  ok = found.first.state() == IteratorState::valid;
+                }
+              catch (...)
+                {
+                  ok = false;
+                }
+              if (ok)
+                break;
+            }
+          if (!ok)
+            {
+              std::ostringstream what;
+              what << "Model updating/Measurement points: point '"
+                   << points[i].label << "' at (" << points[i].x
+                   << ") m lies outside the mesh";
+              throw std::runtime_error(what.str());
+            }
+          const auto &cell = found.first;
+          if (!cell->is_locally_owned())
+            continue;
+          const Point<3> unit =
+            GeometryInfo<3>::project_to_unit_cell(found.second);
+          std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+          cell->get_dof_indices(dofs);
+          std::map<types::global_dof_index, double> weight;
+          for (unsigned int k = 0; k < dofs.size(); ++k)
+            {
+              const unsigned int c = fe.system_to_component_index(k).first;
+              const double w = fe.shape_value(k, unit) * points[i].direction[c];
+              if (w == 0.)
+                continue;
+              if (!model.constraints.is_constrained(dofs[k]))
+                weight[dofs[k]] += w;
+              else if (const auto *entries =
+                         model.constraints.get_constraint_entries(dofs[k]))
+                for (const auto &[dof, a] : *entries)
+                  weight[dof] += w * a;
+            }
+          mine.emplace_back(i, Row(weight.begin(), weight.end()));
+        }
+      std::vector<bool> have(points.size(), false);
+      for (const auto &from : Utilities::MPI::all_gather(comm, mine))
+        for (const auto &[i, row] : from)
+          if (!have[i])
+            {
+              have[i] = true;
+              for (const auto &[dof, w] : row)
+                if (model.locally_owned_dofs.is_element(dof))
+                  rows[i].emplace_back(dof, w);
+            }
+    }
+
+    std::vector<double>
+    PointObservation::operator()(const physics::PETScVector &u) const
+    {
+      std::vector<double> values(rows.size(), 0.);
+      for (unsigned int i = 0; i < rows.size(); ++i)
+        for (const auto &[dof, w] : rows[i])
+          values[i] += w * u[dof];
+      MPI_Allreduce(
+        MPI_IN_PLACE, values.data(), values.size(), MPI_DOUBLE, MPI_SUM, comm);
+      return values;
+    }
+
+
+    ModelUpdatingAnalysis::ModelUpdatingAnalysis(
+      const parameters::AllParameters &prm,
+      const ParameterHandler          &handler,
+      MPI_Comm                         comm)
+      : prm(prm)
+      , handler(handler)
+      , comm(comm)
+      , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+      , timer(comm, pcout, TimerOutput::summary, TimerOutput::wall_times)
+      , model(prm, comm)
+    {
+      parameters = parse_updating_parameters(prm.updating.parameters);
+      std::set<std::string> varied;
+      for (const auto &q : parameters)
+        varied.insert(q.name);
+      model.varied          = varied;
+      model.tie_constraints = contact::add_tie_constraints;
+    }
+
+    updating::ModelModes
+    ModelUpdatingAnalysis::modes_at(const std::vector<double> &values,
+                                    const bool                 with_names)
+    {
+      TimerOutput::Scope       t(timer, "eigensolve and sensitivities");
+      const auto               parts = model.parts();
+      parameters::ScalarPoint  p     = parts.reference;
+      std::vector<std::string> names;
+      for (unsigned int j = 0; j < parameters.size(); ++j)
+        {
+          p.set(parameters[j].name, values[j]);
+          names.push_back(parameters[j].name);
+        }
+      const auto        &es = prm.eigensolver;
+      eigen::BandOptions band{0., f_max, es.target_frequency, es.tolerance, 40};
+      band.symmetric_solver = es.symmetric_solver;
+      ConditionalOStream quiet(std::cout, false);
+      auto modes = eigen::frictionless_modes(parts, p, band, 1., quiet);
+      ++n_solves;
+
+      // d omega^2 / dp_j = phi^T (K_j' - omega^2 M_j') phi from the parts'
+      // quadratic forms q_k = phi^T A_k phi
+      const auto        slope = eigen::coefficient_slopes(parts, p, names);
+      std::vector<bool> needed(parts.size(), false);
+      for (const auto &s : slope)
+        for (unsigned int k = 0; k < parts.size(); ++k)
+          needed[k] =
+            needed[k] || s.mass[k] != 0. || s.symmetric_stiffness[k] != 0.;
+      updating::ModelModes result;
+      physics::PETScVector Aphi;
+      for (unsigned int m = 0; m < modes.frequency.size(); ++m)
+        {
+          const auto         &phi = modes.shape[m];
+          const double        f   = modes.frequency[m];
+          const double        w2  = std::pow(2 * M_PI * f, 2);
+          std::vector<double> q(parts.size(), 0.);
+          Aphi.reinit(phi);
+          for (unsigned int k = 0; k < parts.size(); ++k)
+            if (needed[k])
+              {
+                parts.matrix(k).vmult(Aphi, phi);
+                q[k] = phi * Aphi;
+              }
+          std::vector<double> d;
+          for (const auto &s : slope)
+            {
+              double dw2 = 0.;
+              for (unsigned int k = 0; k < parts.size(); ++k)
+                if (needed[k])
+                  dw2 += (s.symmetric_stiffness[k] - w2 * s.mass[k]) * q[k];
+              d.push_back(f > 0. ? dw2 / (8 * M_PI * M_PI * f) : 0.);
+            }
+          result.frequency.push_back(f);
+          result.derivative.push_back(std::move(d));
+          result.shape.push_back(observation ? (*observation)(phi) :
+                                               std::vector<double>());
+          result.name.push_back("");
+        }
+      if (with_names)
+        {
+          TimerOutput::Scope   tn(timer, "mode names");
+          physics::PETScVector zero(
+            modes.shape.empty() ? physics::PETScVector() : modes.shape[0]);
+          zero = 0.;
+          for (unsigned int m = 0; m < modes.shape.size(); ++m)
+            result.name[m] = mode_name(model, p, modes.shape[m], zero);
+        }
+      return result;
+    }
+
+    void
+    ModelUpdatingAnalysis::run()
+    {
+      const auto &u = prm.updating;
+      // the measured data checked before any output
+      if (!u.measurement_points.empty())
+        points = read_measurement_points(u.measurement_points);
+      targets = read_targets(u.targets, points.size());
+      {
+        TimerOutput::Scope t(timer, "setup and assembly");
+        work_dir = io::start_work_directory(prm.output.directory,
+                                            prm.output.overwrite,
+                                            handler,
+                                            comm);
+        model.setup_and_assemble(pcout);
+        if (!points.empty())
+          observation = std::make_unique<PointObservation>(model, points);
+        double highest = 0.;
+        for (const auto &t : targets)
+          {
+            highest      = std::max(highest, t.frequency);
+            names_needed = names_needed || (!t.name.empty() && t.shape.empty());
+          }
+        f_max = u.maximum_frequency > 0. ? u.maximum_frequency : 1.5 * highest;
+        if (!(f_max > highest))
+          throw std::runtime_error(
+            "Model updating/Maximum frequency = " + std::to_string(f_max) +
+            " Hz lies below the highest measured mode (" +
+            std::to_string(highest) + " Hz); raise it or set 0");
+      }
+      pcout << "Model updating: " << model.n_dofs() << " DoFs, "
+            << parameters.size() << " parameters, " << targets.size()
+            << " measured modes"
+            << (points.empty() ?
+                  std::string() :
+                  ", " + std::to_string(points.size()) + " measurement points")
+            << ", model modes up to " << f_max << " Hz" << std::endl;
+
+      updating::Options options;
+      options.measurement_error = u.measurement_error;
+      options.max_iterations    = u.max_iterations;
+      options.mac_threshold     = u.mac_threshold;
+      options.frequency_window  = u.frequency_window;
+      std::vector<double> start;
+      const auto          reference = model.parts().reference;
+      for (const auto &q : parameters)
+        start.push_back(reference.get(q.name));
+      std::ostringstream log;
+      updating::Result   result = updating::update(
+        [this](const std::vector<double> &v) {
+          return modes_at(v, names_needed);
+        },
+        parameters,
+        start,
+        targets,
+        options,
+        &log);
+      pcout << log.str();
+      if (!result.converged && u.max_iterations > 0)
+        throw std::runtime_error(
+          "model updating did not converge within Model updating/Maximum "
+          "iterations = " +
+          std::to_string(u.max_iterations) + " steps (cost " +
+          std::to_string(result.cost) +
+          "); raise it, or narrow the parameters' bounds");
+      // the names of the start and fitted modes, for the report
+      if (!names_needed)
+        {
+          result.initial_modes.name = modes_at(result.initial, true).name;
+          result.modes.name         = modes_at(result.value, true).name;
+        }
+      {
+        TimerOutput::Scope t(timer, "output");
+        write_results(result);
+      }
+      io::finish_run(work_dir, prm.output.directory, comm);
+      pcout << "Results written to " << prm.output.directory << "/ ("
+            << n_solves << " eigensolves)" << std::endl;
+    }
+
+    void
+    ModelUpdatingAnalysis::write_results(const updating::Result &r) const
+    {
+      const auto  &scene = *model.scene;
+      const bool   root  = Utilities::MPI::this_mpi_process(comm) == 0;
+      const double sigma = prm.updating.measurement_error;
+      // the log's summary
+      pcout << std::setprecision(6) << "  parameter  start  fitted  std. "
+            << "deviation  identifiable" << std::endl;
+      for (unsigned int j = 0; j < parameters.size(); ++j)
+        pcout << "  " << parameters[j].name << "  " << r.initial[j] << "  "
+              << r.value[j] << "  " << r.standard_deviation[j] << "  "
+              << (r.identifiable[j] ? "yes" : "NO")
+              << (r.at_bound[j] ? "  (at a bound)" : "") << std::endl;
+      pcout << "  measured mode  Hz  model start  model fitted  error %"
+            << std::endl;
+      for (unsigned int i = 0; i < targets.size(); ++i)
+        {
+          const double f = r.modes.frequency[r.pairing.mode[i]];
+          pcout << "  " << targets[i].label << "  " << targets[i].frequency
+                << "  " << r.initial_modes.frequency[r.initial_pairing.mode[i]]
+                << "  " << f << "  "
+                << 100 * (f - targets[i].frequency) / targets[i].frequency
+                << std::endl;
+        }
+      if (!root)
+        return;
+
+      io::OutputFile par(work_dir + "/updated_parameters.csv");
+      par << "parameter,unit,scale,lower,upper,initial,fitted,"
+             "standard_deviation,relative_deviation,at_bound,identifiable\n"
+          << std::setprecision(10);
+      for (unsigned int j = 0; j < parameters.size(); ++j)
+        {
+          const auto &q = parameters[j];
+          par << q.name << ',' << scene.parameter(q.name).unit << ','
+              << (q.log_scale ? "log" : "linear") << ',' << q.lower << ','
+              << q.upper << ',' << r.initial[j] << ',' << r.value[j] << ','
+              << r.standard_deviation[j] << ','
+              << r.standard_deviation[j] / std::abs(r.value[j]) << ','
+              << (r.at_bound[j] ? 1 : 0) << ',' << (r.identifiable[j] ? 1 : 0)
+              << '\n';
+        }
+
+      const auto quoted = [](const std::string &s) { return "\"" + s + "\""; };
+      io::OutputFile tg(work_dir + "/targets.csv");
+      tg << "label,name,measured_Hz,weight,initial_mode,initial_Hz,"
+            "initial_name,initial_error_percent,initial_mac,mode,model_Hz,"
+            "model_name,error_percent,mac,residual_in_sigma\n"
+         << std::setprecision(10);
+      for (unsigned int i = 0; i < targets.size(); ++i)
+        {
+          const auto  &t  = targets[i];
+          const int    k0 = r.initial_pairing.mode[i], k = r.pairing.mode[i];
+          const double f0 = r.initial_modes.frequency[k0];
+          const double f  = r.modes.frequency[k];
+          tg << quoted(t.label) << ',' << quoted(t.name) << ',' << t.frequency
+             << ',' << t.weight << ',' << k0 << ',' << f0 << ','
+             << quoted(r.initial_modes.name[k0]) << ','
+             << 100 * (f0 - t.frequency) / t.frequency << ','
+             << r.initial_pairing.mac[i] << ',' << k << ',' << f << ','
+             << quoted(r.modes.name[k]) << ','
+             << 100 * (f - t.frequency) / t.frequency << ',' << r.pairing.mac[i]
+             << ','
+             << std::sqrt(t.weight) * (f - t.frequency) / (sigma * t.frequency)
+             << '\n';
+        }
+
+      io::OutputFile md(work_dir + "/modes.csv");
+      // with measurement points, the shape there (M-normalised mode)
+      md << "mode,freq_Hz,name,target";
+      for (const auto &pt : points)
+        md << ',' << quoted("shape " + pt.label);
+      md << '\n' << std::setprecision(10);
+      for (unsigned int k = 0; k < r.modes.frequency.size(); ++k)
+        {
+          std::string target;
+          for (unsigned int i = 0; i < targets.size(); ++i)
+            if (r.pairing.mode[i] == int(k))
+              target = targets[i].label;
+          md << k << ',' << r.modes.frequency[k] << ','
+             << quoted(r.modes.name[k]) << ',' << quoted(target);
+          for (const double v : r.modes.shape[k])
+            md << ',' << v;
+          md << '\n';
+        }
+
+      io::OutputFile id(work_dir + "/identifiability.csv");
+      id << "index,singular_value,relative";
+      for (const auto &q : parameters)
+        id << ',' << q.name;
+      id << '\n' << std::setprecision(10);
+      for (unsigned int k = 0; k < r.singular_value.size(); ++k)
+        {
+          id << k << ',' << r.singular_value[k] << ','
+             << (r.singular_value[0] > 0. ?
+                   r.singular_value[k] / r.singular_value[0] :
+                   0.);
+          for (unsigned int j = 0; j < parameters.size(); ++j)
+            id << ',' << r.singular_vector(j, k);
+          id << '\n';
+        }
+
+      io::OutputFile hi(work_dir + "/history.csv");
+      hi << "trial,accepted,cost,damping";
+      for (const auto &q : parameters)
+        hi << ',' << q.name;
+      hi << '\n' << std::setprecision(10);
+      for (const auto &h : r.history)
+        {
+          hi << h.index << ',' << (h.accepted ? 1 : 0) << ',' << h.cost << ','
+             << h.damping;
+          for (const double v : h.value)
+            hi << ',' << v;
+          hi << '\n';
+        }
+
+      if (r.pairing.mac_matrix.size() > 0)
+        {
+          io::OutputFile mac(work_dir + "/mac.csv");
+          mac << "target";
+          for (unsigned int k = 0; k < r.modes.frequency.size(); ++k)
+            mac << ",mode " << k << " (" << std::setprecision(6)
+                << r.modes.frequency[k] << " Hz)";
+          mac << '\n' << std::setprecision(6);
+          for (unsigned int i = 0; i < targets.size(); ++i)
+            {
+              mac << quoted(targets[i].label);
+              for (unsigned int k = 0; k < r.modes.frequency.size(); ++k)
+                mac << ',' << r.pairing.mac_matrix(i, k);
+              mac << '\n';
+            }
+        }
+
+      io::OutputFile summary(work_dir + "/summary.txt");
+      summary << "Model updating: " << r.stop_reason << " after "
+              << r.iterations << " steps (" << n_solves
+              << " eigensolves); cost 1/2 sum r^2 " << r.initial_cost << " -> "
+              << r.cost << " (r in units of the measurement error " << sigma
+              << ")\n";
+      std::vector<std::string> unidentified;
+      for (unsigned int j = 0; j < parameters.size(); ++j)
+        if (!r.identifiable[j])
+          unidentified.push_back(parameters[j].name);
+      if (unidentified.empty())
+        summary << "Every parameter is identifiable from these targets.\n";
+      else
+        {
+          summary << "Not identifiable from these targets:";
+          for (const auto &n : unidentified)
+            summary << ' ' << n;
+          summary << " (see identifiability.csv)\n";
+        }
+      if (!r.converged)
+        summary << "WARNING: the iteration limit was reached before the fit "
+                   "converged\n";
+    }
+  } // namespace analyses
+} // namespace squeal

@@ -1,0 +1,198 @@
+"""End-to-end check of Scene/Analysis = model updating on the two-block scene
+(tests/end_to_end/model_updating.prm): squeal itself "measures" the modes
+below 90 kHz at hidden parameter values (block.E = 13 GPa, base.E = 180 GPa,
+k_n = 2.5e13 N/m^3; a run with Maximum iterations = 0 writes modes.csv with
+the shapes at the measurement points), the frequencies get a fixed
+pseudo-random noise of at most 0.2 % and the shapes 1 % of their largest
+value, and the fit from the file's values (10 GPa, 210 GPa, 1e13) must:
+- converge, with every fitted value within 3 of its stated standard
+  deviations of the hidden one, the deviations below 5 %, all identifiable;
+- pair every measured mode with its own (MAC >= 0.9 after the fit; the
+  base's and the block's doublets by the span of their twins), every
+  frequency error below 0.5 %, the cost down by 100x;
+- under mpirun -np 2 with damping.beta added (no frictionless mode depends
+  on it): the same fitted values (1e-6 relative) and damping.beta reported
+  not identifiable, with an infinite deviation and a zero singular value;
+- bad input fails with one error naming the item, and leaves no finished
+  folder: an unknown parameter, a measurement point outside the mesh, a
+  non-numeric frequency (file and line), a shape of the wrong length, no
+  Targets, and a fit that does not converge within Maximum iterations.
+Usage: check_model_updating.py SQUEAL BASE_PRM WORKDIR"""
+import csv
+import shutil
+import subprocess
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish, run_squeal  # noqa: E402
+
+os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+squeal, base, work = sys.argv[1:4]
+os.makedirs(work, exist_ok=True)
+os.chdir(work)
+
+HIDDEN = {"block.E": 13e9, "base.E": 180e9, "block on base.k_n": 2.5e13}
+SIGMA = 0.002
+
+
+def rows(folder, name):
+    with open(os.path.join(folder, name)) as f:
+        return list(csv.DictReader(f))
+
+
+def noise(state=[12345]):
+    """Deterministic noise in [-1, 1] (a linear congruential sequence)."""
+    state[0] = (1664525 * state[0] + 1013904223) % 2**32
+    return 2 * state[0] / 2**32 - 1
+
+
+# 1. the "measurement": modes at the hidden values
+with open("probe.csv", "w") as f:
+    f.write("label,frequency_Hz,weight,name\nprobe,50000,1,\n")
+bodies = (f"base: E={HIDDEN['base.E']}, nu=0.3, rho=7800; "
+          f"block: E={HIDDEN['block.E']}, nu=0.25, rho=2500")
+measured, _ = run_squeal(squeal, base, "measured", f"""subsection Scene
+  subsection Mesh file
+    set Bodies = {bodies}
+  end
+end
+subsection Interface
+  set Normal stiffness = {HIDDEN['block on base.k_n']}
+end
+subsection Model updating
+  set Targets = probe.csv
+  set Maximum iterations = 0
+  set Frequency window = 10
+end
+""")
+modes = [m for m in rows(measured, "modes.csv") if float(m["freq_Hz"]) < 9e4]
+shape_columns = [c for c in modes[0] if c.startswith("shape ")]
+check("measured: modes below 90 kHz with shapes at 7 points",
+      len(modes) >= 8 and len(shape_columns) == 7,
+      f"{len(modes)} modes, {len(shape_columns)} shape columns", show=True)
+with open("targets_measured.csv", "w") as f:
+    f.write("label,frequency_Hz,weight,name" +
+            "".join(f",{c}" for c in shape_columns) + "\n")
+    for m in modes:
+        shape = [float(m[c]) for c in shape_columns]
+        big = max(abs(s) for s in shape)
+        f.write(f"\"mode {m['mode']} ({m['name']})\","
+                f"{float(m['freq_Hz']) * (1 + SIGMA * noise()):.10g},1,")
+        f.write("".join(f",{s + 0.01 * big * noise():.10g}" for s in shape))
+        f.write("\n")
+
+# 2. the fit from the file's values
+fit_prm = f"""subsection Model updating
+  set Targets = targets_measured.csv
+  set Measurement error = {SIGMA}
+end
+"""
+fitted, log = run_squeal(squeal, base, "fitted", fit_prm)
+par = {r["parameter"]: r for r in rows(fitted, "updated_parameters.csv")}
+for name, hidden in HIDDEN.items():
+    r = par[name]
+    value, sd = float(r["fitted"]), float(r["standard_deviation"])
+    check(f"{name}: within 3 deviations of the hidden value",
+          abs(value - hidden) <= 3 * sd,
+          f"fitted {value:.6g}, hidden {hidden:.6g}, deviation {sd:.3g}",
+          show=True)
+    check(f"{name}: deviation below 5 %", sd / value < 0.05,
+          f"{sd / value:.3g}", show=True)
+    check(f"{name}: identifiable", r["identifiable"] == "1", r)
+targets = rows(fitted, "targets.csv")
+check("every measured mode in targets.csv", len(targets) == len(modes),
+      f"{len(targets)} of {len(modes)}")
+worst_error = max(abs(float(t["error_percent"])) for t in targets)
+least_mac = min(float(t["mac"]) for t in targets)
+check("after the fit every frequency within 0.5 %", worst_error < 0.5,
+      f"largest {worst_error:.3g} %", show=True)
+check("after the fit every pairing MAC >= 0.9", least_mac >= 0.9,
+      f"least {least_mac:.4f}", show=True)
+start_error = max(abs(float(t["initial_error_percent"])) for t in targets)
+check("the start is far (largest error above 5 %)", start_error > 5,
+      f"{start_error:.3g} %", show=True)
+history = rows(fitted, "history.csv")
+check("the cost went down 100x",
+      float(history[-1]["cost"]) < 1e-2 * float(history[0]["cost"]),
+      f"{history[0]['cost']} -> {history[-1]['cost']}", show=True)
+modes_after = rows(fitted, "modes.csv")
+paired = {m["target"] for m in modes_after if m["target"]}
+check("modes.csv names each measured mode's model mode once",
+      paired == {t["label"] for t in targets})
+check("mac.csv: one row per measured mode",
+      len(rows(fitted, "mac.csv")) == len(targets))
+
+# 3. mpirun -np 2, with a parameter no frictionless mode depends on
+mpi, _ = run_squeal(squeal, base, "fitted_mpi", fit_prm + """subsection Model updating
+  set Parameters = block.E: 1e9, 1e11; base.E: 5e10, 1e12; \\
+                   block on base.k_n: 1e11, 1e15; damping.beta: 1e-9, 1e-5
+end
+""", mpi=2)
+par2 = {r["parameter"]: r for r in rows(mpi, "updated_parameters.csv")}
+for name in HIDDEN:
+    a, b = float(par[name]["fitted"]), float(par2[name]["fitted"])
+    check(f"np = 2 with damping.beta: {name} as with np = 1",
+          abs(a - b) <= 1e-6 * abs(a), f"{a:.10g} vs {b:.10g}")
+beta = par2["damping.beta"]
+check("damping.beta: not identifiable, infinite deviation",
+      beta["identifiable"] == "0" and math.isinf(float(beta["standard_deviation"])),
+      beta)
+ident = rows(mpi, "identifiability.csv")
+check("damping.beta: a zero singular value along it",
+      float(ident[-1]["relative"]) < 1e-6 and
+      abs(float(ident[-1]["damping.beta"])) > 0.99, ident[-1])
+with open(os.path.join(mpi, "summary.txt")) as f:
+    summary = f.read()
+check("summary.txt names damping.beta as not identifiable",
+      "Not identifiable from these targets: damping.beta" in summary, summary)
+
+
+# 4. bad input
+def fails(name, extra, expected):
+    out = os.path.abspath(name)
+    for folder in (out, out + ".partial"):
+        shutil.rmtree(folder, ignore_errors=True)
+    with open(name + ".prm", "w") as f:
+        f.write(f"include {base}\n{extra}subsection Output\n"
+                f"  set Directory = {out}\nend\n")
+    r = subprocess.run([squeal, name + ".prm"], capture_output=True, text=True)
+    errors = [line for line in r.stderr.splitlines() if "error" in line]
+    check(f"bad input {name}: one error naming it, no result",
+          r.returncode != 0 and len(errors) == 1 and expected in errors[0]
+          and not os.path.exists(out), f"exit {r.returncode}: {r.stderr}")
+
+
+fails("unknown_parameter", fit_prm + """subsection Model updating
+  set Parameters = pad.E: 1e9, 1e11
+end
+""", "Model updating/Parameters: unknown parameter 'pad.E'; this scene's "
+   "parameters are base.E|base.rho|block.E")
+with open(os.path.join(os.path.dirname(base), "model_updating_points.csv")) as f:
+    lines = f.read().splitlines()
+with open("far_points.csv", "w") as f:  # the last of the 7 points moved away
+    f.write("\n".join(lines[:-1] + ["far,0.5,0,0,0,0,1"]) + "\n")
+fails("point_outside", fit_prm + """subsection Model updating
+  set Measurement points = far_points.csv
+end
+""", "point 'far' at (0.5 0 0) m lies outside the mesh")
+with open("bad_frequency.csv", "w") as f:
+    f.write("label,frequency_Hz,weight,name\na,18000,1,\nb,abc,1,\n")
+fails("bad_frequency", """subsection Model updating
+  set Targets = bad_frequency.csv
+end
+""", "bad_frequency.csv', line 3: frequency_Hz = 'abc' is not a number")
+with open("short_shape.csv", "w") as f:
+    f.write("label,frequency_Hz,weight,name\na,18000,1,,1,2,3\n")
+fails("short_shape", """subsection Model updating
+  set Targets = short_shape.csv
+end
+""", "3 shape values; give one per measurement point (7) or none")
+fails("no_targets", "", "needs Model updating/Parameters")
+fails("not_converged", fit_prm + """subsection Model updating
+  set Maximum iterations = 1
+end
+""", "did not converge within Model updating/Maximum iterations = 1")
+finish()
