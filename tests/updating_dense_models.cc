@@ -17,7 +17,11 @@
 //     swap their order between the start and the hidden point. Paired by
 //     MAC the fit recovers k_a and k_b (1e-6); the control pairs by
 //     frequency alone and lands on the swapped values, far from them.
-//  4. bad input: a target no mode pairs with is named in the error; bad
+//  4. two configurations of one model (a spring that is not fitted at two
+//     values): every target paired with a mode of its own configuration,
+//     the springs recovered within 3 deviations; a disc mode's name without
+//     its sign matches both signs;
+//  5. bad input: a target no mode pairs with is named in the error; bad
 //     bounds are named.
 
 #include <squeal/updating/model_updating.h>
@@ -291,7 +295,55 @@ main(int argc, char **argv)
                  by_frequency.value[1] > 1.5 * hidden[1]);
   }
 
-  // 4. bad input
+  // 4. two configurations (the fourth spring at 1e6 and 3e6 N/m, not
+  // fitted): the modes of both in one model, each target paired in its own
+  {
+    const auto two = [&](const std::vector<double> &k) {
+      updating::ModelModes all;
+      for (const unsigned int c : {0u, 1u})
+        {
+          auto modes = model({k[0], k[1], k[2], c == 0 ? 1e6 : 3e6, 2.});
+          for (unsigned int m = 0; m < modes.frequency.size(); ++m)
+            {
+              all.frequency.push_back(modes.frequency[m]);
+              modes.derivative[m].resize(3);
+              all.derivative.push_back(modes.derivative[m]);
+              all.shape.push_back(modes.shape[m]);
+              all.name.push_back("");
+              all.configuration.push_back(c);
+            }
+        }
+      return all;
+    };
+    const std::vector<double> hidden{1.3e6, 1.6e6, 1.725e6};
+    auto                      targets = targets_of(two(hidden), 1e-3, false);
+    for (unsigned int i = 0; i < targets.size(); ++i)
+      targets[i].configuration = i < 4 ? 0 : 1;
+    const std::vector<updating::Parameter> parameters{{"k1", 1e4, 1e8, true},
+                                                      {"k2", 1e4, 1e8, true},
+                                                      {"k3", 1e4, 1e8, true}};
+    const auto                             result =
+      updating::update(two, parameters, {1e6, 2e6, 1.5e6}, targets, options);
+    bool own = true;
+    for (unsigned int i = 0; i < targets.size(); ++i)
+      own = own && (result.pairing.mode[i] < 4) == (i < 4);
+    check_true("configurations: every target paired in its own", own);
+    for (unsigned int j = 0; j < 3; ++j)
+      check("configurations: " + parameters[j].name + " within 3 deviations",
+            result.value[j],
+            hidden[j],
+            3 * result.standard_deviation[j],
+            1.);
+  }
+  check_true("names: (1,3) matches (1,3+) and (1,3-)",
+             updating::names_match("(1,3)", "(1,3+)") &&
+               updating::names_match("(1,3)", "(1,3-)"));
+  check_true("names: (1,3+) does not match (1,3-), (1,3) not (1,30+)",
+             !updating::names_match("(1,3+)", "(1,3-)") &&
+               !updating::names_match("(1,3)", "(1,30+)") &&
+               !updating::names_match("(1,3)", "(1,4+)"));
+
+  // 5. bad input
   {
     const auto one_spring = [&](const std::vector<double> &k) {
       auto modes = model({k[0], 2e6, 1.5e6, 1e6, 2.});

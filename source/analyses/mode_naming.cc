@@ -158,7 +158,8 @@ namespace squeal
               const parameters::ScalarPoint  &values,
               const physics::PETScVector     &re,
               const physics::PETScVector     &im,
-              std::vector<double>            *shares)
+              std::vector<double>            *shares,
+              const bool                      with_direction)
     {
       // kinetic-energy shares with the whole mass of the point (every body
       // at its density)
@@ -182,15 +183,35 @@ namespace squeal
       const scene::Body *disc = model.scene->disc();
       if (disc != nullptr && share(*disc) > 0.5 * total)
         return disc_mode_name(model, *disc, re, im);
-      std::string name;
-      double      most = -1.;
+      const scene::Body *carrier = nullptr;
       for (const scene::Body &b : bodies)
-        if (&b != disc && share(b) > most)
+        if (&b != disc && (carrier == nullptr || share(b) > share(*carrier)))
+          carrier = &b;
+      if (carrier == nullptr)
+        return "";
+      if (!with_direction)
+        return carrier->name;
+      // the axis along which the body's DoFs move most
+      std::array<double, 3>                sum{{0., 0., 0.}};
+      std::vector<bool>                    seen(model.n_dofs(), false);
+      std::vector<types::global_dof_index> dofs(model.fe.n_dofs_per_cell());
+      for (const auto &cell : model.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() && cell->material_id() == carrier->id)
           {
-            most = share(b);
-            name = b.name;
+            cell->get_dof_indices(dofs);
+            for (unsigned int k = 0; k < dofs.size(); ++k)
+              if (!seen[dofs[k]] &&
+                  model.locally_owned_dofs.is_element(dofs[k]))
+                {
+                  seen[dofs[k]] = true;
+                  sum[model.fe.system_to_component_index(k).first] +=
+                    re[dofs[k]] * re[dofs[k]] + im[dofs[k]] * im[dofs[k]];
+                }
           }
-      return name;
+      for (double &s : sum)
+        s = Utilities::MPI::sum(s, model.comm);
+      const auto axis = std::max_element(sum.begin(), sum.end()) - sum.begin();
+      return carrier->name + " " + "xyz"[axis];
     }
   } // namespace analyses
 } // namespace squeal

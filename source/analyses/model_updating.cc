@@ -97,10 +97,10 @@ namespace squeal
 
       /** @p field as a number, or an error naming file, line and column. */
       double
-      number(const std::string &field,
-             const std::string &file,
-             const unsigned int line,
-             const std::string &column)
+      number_of(const std::string &field,
+                const std::string &file,
+                const unsigned int line,
+                const std::string &column)
       {
         std::size_t used = 0;
         double      value;
@@ -139,8 +139,8 @@ namespace squeal
           const char *const column[] = {"x", "y", "z", "dx", "dy", "dz"};
           for (unsigned int d = 0; d < 3; ++d)
             {
-              p.x[d]         = number(f[1 + d], file, line, column[d]);
-              p.direction[d] = number(f[4 + d], file, line, column[3 + d]);
+              p.x[d]         = number_of(f[1 + d], file, line, column[d]);
+              p.direction[d] = number_of(f[4 + d], file, line, column[3 + d]);
             }
           if (!(p.direction.norm() > 0.))
             throw std::runtime_error("'" + file + "', line " +
@@ -152,42 +152,162 @@ namespace squeal
       return points;
     }
 
-    std::vector<updating::Target>
-    read_targets(const std::string &file, const unsigned int n_points)
+    std::vector<Configuration>
+    parse_configurations(const std::string &text)
     {
+      std::vector<Configuration> result;
+      std::istringstream         items(text);
+      for (std::string item; std::getline(items, item, ';');)
+        {
+          if (item.find_first_not_of(" \t") == std::string::npos)
+            continue;
+          const std::string where =
+            "Model updating/Configurations, item '" + item + "'";
+          const auto    colon = item.find(':');
+          Configuration c;
+          if (colon != std::string::npos)
+            c.name = csv_fields(item.substr(0, colon))[0];
+          if (c.name.empty())
+            throw std::runtime_error(where + ": write it `name: parameter = "
+                                             "value, parameter = value`");
+          for (const auto &pair : csv_fields(item.substr(colon + 1)))
+            {
+              const auto equal = pair.find('=');
+              if (equal == std::string::npos)
+                throw std::runtime_error(where + ": '" + pair +
+                                         "' is not `parameter = value`");
+              const std::string name  = csv_fields(pair.substr(0, equal))[0];
+              const std::string value = csv_fields(pair.substr(equal + 1))[0];
+              std::size_t       used  = 0;
+              double            v     = 0.;
+              try
+                {
+                  v = std::stod(value, &used);
+                }
+              catch (const std::exception &)
+                {
+                  used = 0;
+                }
+              if (used == 0 || used != value.size())
+                throw std::runtime_error(where + ": the value '" + value +
+                                         "' is not a number");
+              c.values.emplace_back(name, v);
+            }
+          for (const auto &other : result)
+            if (other.name == c.name)
+              throw std::runtime_error(where + ": the name '" + c.name +
+                                       "' is given twice");
+          result.push_back(c);
+        }
+      return result;
+    }
+
+    std::vector<updating::Target>
+    read_targets(const std::string                &file,
+                 const unsigned int                n_points,
+                 const std::vector<Configuration> &configurations)
+    {
+      std::ifstream in(file);
+      if (!in)
+        throw std::runtime_error("cannot open Model updating/Targets file '" +
+                                 file + "'");
+      // the header names the columns
+      std::string              line;
+      unsigned int             number = 0;
+      std::vector<std::string> header;
+      while (header.empty() && std::getline(in, line))
+        {
+          ++number;
+          const auto first = line.find_first_not_of(" \t\r");
+          if (first != std::string::npos && line[first] != '#')
+            header = csv_fields(line);
+        }
+      const auto column = [&](const std::string &name) {
+        return int(std::find(header.begin(), header.end(), name) -
+                   header.begin());
+      };
+      const int label = column("label"), frequency = column("frequency_Hz"),
+                weight = column("weight"), name = column("name"),
+                configuration = column("configuration");
+      const int n_columns     = header.size();
+      if (label == n_columns || frequency == n_columns)
+        throw std::runtime_error("Model updating/Targets file '" + file +
+                                 "': the header (line " +
+                                 std::to_string(number) +
+                                 ") needs the columns label and frequency_Hz");
+      std::vector<int> shape;
+      for (int c = 0; c < n_columns; ++c)
+        if (header[c].rfind("shape", 0) == 0)
+          shape.push_back(c);
+      if (!shape.empty() && shape.size() != n_points)
+        throw std::runtime_error(
+          "Model updating/Targets file '" + file +
+          "': " + std::to_string(shape.size()) +
+          " shape columns; give one per measurement point (" +
+          std::to_string(n_points) + ") or none");
+
       std::vector<updating::Target> targets;
       std::set<std::string>         labels;
-      for (const auto &[line, f] :
-           csv_rows(file, "Model updating/Targets file"))
+      while (std::getline(in, line))
         {
-          const std::string at = "'" + file + "', line " + std::to_string(line);
-          if (f.size() < 2)
-            throw std::runtime_error(at + ": a measured mode is "
-                                          "label,frequency_Hz,weight,name[,"
-                                          "shape values]");
+          ++number;
+          const auto first = line.find_first_not_of(" \t\r");
+          if (first == std::string::npos || line[first] == '#')
+            continue;
+          const std::string at =
+            "'" + file + "', line " + std::to_string(number);
+          auto f = csv_fields(line);
+          if (int(f.size()) > n_columns)
+            throw std::runtime_error(at + ": " + std::to_string(f.size()) +
+                                     " fields under a header of " +
+                                     std::to_string(n_columns));
+          f.resize(n_columns);
           updating::Target t;
-          t.label     = f[0];
-          t.frequency = number(f[1], file, line, "frequency_Hz");
-          if (f.size() > 2 && !f[2].empty())
-            t.weight = number(f[2], file, line, "weight");
-          if (f.size() > 3)
-            t.name = f[3];
-          for (unsigned int i = 4; i < f.size(); ++i)
-            t.shape.push_back(
-              number(f[i], file, line, "shape value " + std::to_string(i - 3)));
+          t.label     = f[label];
+          t.frequency = number_of(f[frequency], file, number, "frequency_Hz");
+          if (weight < n_columns && !f[weight].empty())
+            t.weight = number_of(f[weight], file, number, "weight");
+          if (name < n_columns)
+            t.name = f[name];
+          if (configuration < n_columns && !f[configuration].empty())
+            {
+              unsigned int c = 0;
+              while (c < configurations.size() &&
+                     configurations[c].name != f[configuration])
+                ++c;
+              if (c == configurations.size())
+                {
+                  std::string known;
+                  for (const auto &k : configurations)
+                    known += (known.empty() ? "" : ", ") + k.name;
+                  throw std::runtime_error(
+                    at + ": configuration '" + f[configuration] +
+                    "' is not one of Model updating/Configurations (" +
+                    (known.empty() ? std::string("none given") : known) + ")");
+                }
+              t.configuration = c + 1;
+            }
+          unsigned int given = 0;
+          for (const int c : shape)
+            given += !f[c].empty();
+          if (given > 0 && given < shape.size())
+            throw std::runtime_error(at + ": " + std::to_string(given) +
+                                     " of the " + std::to_string(shape.size()) +
+                                     " shape values; give all or none");
+          if (given > 0)
+            for (const int c : shape)
+              t.shape.push_back(number_of(f[c], file, number, header[c]));
           if (!(t.frequency > 0.) || !(t.weight > 0.))
             throw std::runtime_error(at + ": frequency_Hz and weight must be "
                                           "> 0");
-          if (!t.shape.empty() && t.shape.size() != n_points)
-            throw std::runtime_error(
-              at + ": " + std::to_string(t.shape.size()) +
-              " shape values; give one per measurement point (" +
-              std::to_string(n_points) + ") or none");
           if (t.label.empty() || !labels.insert(t.label).second)
             throw std::runtime_error(at + ": the label '" + t.label +
                                      "' is empty or given twice");
           targets.push_back(std::move(t));
         }
+      if (targets.empty())
+        throw std::runtime_error("Model updating/Targets file '" + file +
+                                 "' holds no data line after its header");
       return targets;
     }
 
@@ -345,6 +465,24 @@ namespace squeal
       std::set<std::string> varied;
       for (const auto &q : parameters)
         varied.insert(q.name);
+      configurations.push_back({});
+      for (const auto &c : parse_configurations(prm.updating.configurations))
+        {
+          for (const auto &[name, value] : c.values)
+            {
+              if (varied.count(name) > 0 &&
+                  std::any_of(parameters.begin(),
+                              parameters.end(),
+                              [&](const auto &q) { return q.name == name; }))
+                throw std::runtime_error(
+                  "Model updating/Configurations: configuration '" + c.name +
+                  "' sets " + name +
+                  ", which is fitted; a configuration may set only "
+                  "parameters that are not");
+              varied.insert(name);
+            }
+          configurations.push_back(c);
+        }
       model.varied          = varied;
       model.tie_constraints = contact::add_tie_constraints;
     }
@@ -355,69 +493,103 @@ namespace squeal
     {
       TimerOutput::Scope       t(timer, "eigensolve and sensitivities");
       const auto               parts = model.parts();
-      parameters::ScalarPoint  p     = parts.reference;
       std::vector<std::string> names;
-      for (unsigned int j = 0; j < parameters.size(); ++j)
-        {
-          p.set(parameters[j].name, values[j]);
-          names.push_back(parameters[j].name);
-        }
+      for (const auto &q : parameters)
+        names.push_back(q.name);
       const auto        &es = prm.eigensolver;
       eigen::BandOptions band{0., f_max, es.target_frequency, es.tolerance, 40};
       band.symmetric_solver = es.symmetric_solver;
-      ConditionalOStream quiet(std::cout, false);
-      auto modes = eigen::frictionless_modes(parts, p, band, 1., quiet);
-      ++n_solves;
-
-      // d omega^2 / dp_j = phi^T (K_j' - omega^2 M_j') phi from the parts'
-      // quadratic forms q_k = phi^T A_k phi
-      const auto        slope = eigen::coefficient_slopes(parts, p, names);
-      std::vector<bool> needed(parts.size(), false);
-      for (const auto &s : slope)
-        for (unsigned int k = 0; k < parts.size(); ++k)
-          needed[k] =
-            needed[k] || s.mass[k] != 0. || s.symmetric_stiffness[k] != 0.;
+      ConditionalOStream   quiet(std::cout, false);
       updating::ModelModes result;
-      physics::PETScVector Aphi;
-      for (unsigned int m = 0; m < modes.frequency.size(); ++m)
-        {
-          const auto         &phi = modes.shape[m];
-          const double        f   = modes.frequency[m];
-          const double        w2  = std::pow(2 * M_PI * f, 2);
-          std::vector<double> q(parts.size(), 0.);
-          Aphi.reinit(phi);
-          for (unsigned int k = 0; k < parts.size(); ++k)
-            if (needed[k])
-              {
-                parts.matrix(k).vmult(Aphi, phi);
-                q[k] = phi * Aphi;
-              }
-          std::vector<double> d;
-          for (const auto &s : slope)
-            {
-              double dw2 = 0.;
+      for (unsigned int c = 0; c < configurations.size(); ++c)
+        if (used[c])
+          {
+            parameters::ScalarPoint p = parts.reference;
+            for (const auto &[name, value] : configurations[c].values)
+              p.set(name, value);
+            for (unsigned int j = 0; j < parameters.size(); ++j)
+              p.set(parameters[j].name, values[j]);
+            auto modes = eigen::frictionless_modes(parts, p, band, 1., quiet);
+            ++n_solves;
+
+            // d omega^2 / dp_j = phi^T (K_j' - omega^2 M_j') phi from the
+            // parts' quadratic forms q_k = phi^T A_k phi
+            const auto slope = eigen::coefficient_slopes(parts, p, names);
+            std::vector<bool> needed(parts.size(), false);
+            for (const auto &d : slope)
               for (unsigned int k = 0; k < parts.size(); ++k)
-                if (needed[k])
-                  dw2 += (s.symmetric_stiffness[k] - w2 * s.mass[k]) * q[k];
-              d.push_back(f > 0. ? dw2 / (8 * M_PI * M_PI * f) : 0.);
-            }
-          result.frequency.push_back(f);
-          result.derivative.push_back(std::move(d));
-          result.shape.push_back(observation ? (*observation)(phi) :
-                                               std::vector<double>());
-          result.name.push_back("");
-        }
-      if (with_names)
-        {
-          TimerOutput::Scope   tn(timer, "mode names");
-          physics::PETScVector zero(
-            modes.shape.empty() ? physics::PETScVector() : modes.shape[0]);
-          zero = 0.;
-          for (unsigned int m = 0; m < modes.shape.size(); ++m)
-            result.name[m] = mode_name(model, p, modes.shape[m], zero);
-        }
+                needed[k] = needed[k] || d.mass[k] != 0. ||
+                            d.symmetric_stiffness[k] != 0.;
+            physics::PETScVector Aphi, zero;
+            for (unsigned int m = 0; m < modes.frequency.size(); ++m)
+              {
+                const auto         &phi = modes.shape[m];
+                const double        f   = modes.frequency[m];
+                const double        w2  = std::pow(2 * M_PI * f, 2);
+                std::vector<double> q(parts.size(), 0.);
+                Aphi.reinit(phi);
+                for (unsigned int k = 0; k < parts.size(); ++k)
+                  if (needed[k])
+                    {
+                      parts.matrix(k).vmult(Aphi, phi);
+                      q[k] = phi * Aphi;
+                    }
+                std::vector<double> d;
+                for (const auto &sl : slope)
+                  {
+                    double dw2 = 0.;
+                    for (unsigned int k = 0; k < parts.size(); ++k)
+                      if (needed[k])
+                        dw2 +=
+                          (sl.symmetric_stiffness[k] - w2 * sl.mass[k]) * q[k];
+                    d.push_back(f > 0. ? dw2 / (8 * M_PI * M_PI * f) : 0.);
+                  }
+                result.frequency.push_back(f);
+                result.derivative.push_back(std::move(d));
+                result.shape.push_back(observation ? (*observation)(phi) :
+                                                     std::vector<double>());
+                result.configuration.push_back(c);
+                if (with_names)
+                  {
+                    TimerOutput::Scope tn(timer, "mode names");
+                    zero.reinit(phi);
+                    result.name.push_back(
+                      mode_name(model, p, phi, zero, nullptr, true));
+                  }
+                else
+                  result.name.push_back("");
+              }
+          }
       return result;
     }
+
+    namespace
+    {
+      /**
+       * The names of @p named (a second solve at the same point) given to
+       * the modes of @p modes: each takes the name of the mode of its
+       * configuration nearest in frequency, "" if none lies within 1e-6
+       * of it (a second solve need not return the same count at the
+       * band's edge, nor the same order of a doublet's twins, which share
+       * a name).
+       */
+      void
+      copy_names(const updating::ModelModes &named, updating::ModelModes &modes)
+      {
+        modes.name.assign(modes.frequency.size(), "");
+        for (unsigned int k = 0; k < modes.frequency.size(); ++k)
+          {
+            double best = 1e-6 * modes.frequency[k];
+            for (unsigned int l = 0; l < named.frequency.size(); ++l)
+              if (named.configuration[l] == modes.configuration[k] &&
+                  std::abs(named.frequency[l] - modes.frequency[k]) <= best)
+                {
+                  best = std::abs(named.frequency[l] - modes.frequency[k]);
+                  modes.name[k] = named.name[l];
+                }
+          }
+      }
+    } // namespace
 
     void
     ModelUpdatingAnalysis::run()
@@ -426,7 +598,14 @@ namespace squeal
       // the measured data checked before any output
       if (!u.measurement_points.empty())
         points = read_measurement_points(u.measurement_points);
-      targets = read_targets(u.targets, points.size());
+      targets =
+        read_targets(u.targets,
+                     points.size(),
+                     std::vector<Configuration>(configurations.begin() + 1,
+                                                configurations.end()));
+      used.assign(configurations.size(), false);
+      for (const auto &t : targets)
+        used[t.configuration] = true;
       {
         TimerOutput::Scope t(timer, "setup and assembly");
         work_dir = io::start_work_directory(prm.output.directory,
@@ -487,8 +666,8 @@ namespace squeal
       // the names of the start and fitted modes, for the report
       if (!names_needed)
         {
-          result.initial_modes.name = modes_at(result.initial, true).name;
-          result.modes.name         = modes_at(result.value, true).name;
+          copy_names(modes_at(result.initial, true), result.initial_modes);
+          copy_names(modes_at(result.value, true), result.modes);
         }
       {
         TimerOutput::Scope t(timer, "output");
@@ -502,9 +681,7 @@ namespace squeal
     void
     ModelUpdatingAnalysis::write_results(const updating::Result &r) const
     {
-      const auto  &scene = *model.scene;
-      const bool   root  = Utilities::MPI::this_mpi_process(comm) == 0;
-      const double sigma = prm.updating.measurement_error;
+      const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
       // the log's summary
       pcout << std::setprecision(6) << "  parameter  start  fitted  std. "
             << "deviation  identifiable" << std::endl;
@@ -524,9 +701,29 @@ namespace squeal
                 << 100 * (f - targets[i].frequency) / targets[i].frequency
                 << std::endl;
         }
-      if (!root)
-        return;
+      // the files on rank 0; a failure there reaches every rank, so that
+      // none waits for the others
+      std::string failure;
+      if (root)
+        try
+          {
+            write_files(r);
+          }
+        catch (const std::exception &e)
+          {
+            failure =
+              std::string("writing the model updating results: ") + e.what();
+          }
+      failure = Utilities::MPI::broadcast(comm, failure, 0);
+      if (!failure.empty())
+        throw std::runtime_error(failure);
+    }
 
+    void
+    ModelUpdatingAnalysis::write_files(const updating::Result &r) const
+    {
+      const auto    &scene = *model.scene;
+      const double   sigma = prm.updating.measurement_error;
       io::OutputFile par(work_dir + "/updated_parameters.csv");
       par << "parameter,unit,scale,lower,upper,initial,fitted,"
              "standard_deviation,relative_deviation,at_bound,identifiable\n"
@@ -545,18 +742,20 @@ namespace squeal
 
       const auto quoted = [](const std::string &s) { return "\"" + s + "\""; };
       io::OutputFile tg(work_dir + "/targets.csv");
-      tg << "label,name,measured_Hz,weight,initial_mode,initial_Hz,"
-            "initial_name,initial_error_percent,initial_mac,mode,model_Hz,"
-            "model_name,error_percent,mac,residual_in_sigma\n"
-         << std::setprecision(10);
+      tg
+        << "label,name,configuration,measured_Hz,weight,initial_mode,initial_Hz,"
+           "initial_name,initial_error_percent,initial_mac,mode,model_Hz,"
+           "model_name,error_percent,mac,residual_in_sigma\n"
+        << std::setprecision(10);
       for (unsigned int i = 0; i < targets.size(); ++i)
         {
           const auto  &t  = targets[i];
           const int    k0 = r.initial_pairing.mode[i], k = r.pairing.mode[i];
           const double f0 = r.initial_modes.frequency[k0];
           const double f  = r.modes.frequency[k];
-          tg << quoted(t.label) << ',' << quoted(t.name) << ',' << t.frequency
-             << ',' << t.weight << ',' << k0 << ',' << f0 << ','
+          tg << quoted(t.label) << ',' << quoted(t.name) << ','
+             << quoted(configurations[t.configuration].name) << ','
+             << t.frequency << ',' << t.weight << ',' << k0 << ',' << f0 << ','
              << quoted(r.initial_modes.name[k0]) << ','
              << 100 * (f0 - t.frequency) / t.frequency << ','
              << r.initial_pairing.mac[i] << ',' << k << ',' << f << ','
@@ -569,7 +768,7 @@ namespace squeal
 
       io::OutputFile md(work_dir + "/modes.csv");
       // with measurement points, the shape there (M-normalised mode)
-      md << "mode,freq_Hz,name,target";
+      md << "mode,configuration,freq_Hz,name,target";
       for (const auto &pt : points)
         md << ',' << quoted("shape " + pt.label);
       md << '\n' << std::setprecision(10);
@@ -579,8 +778,10 @@ namespace squeal
           for (unsigned int i = 0; i < targets.size(); ++i)
             if (r.pairing.mode[i] == int(k))
               target = targets[i].label;
-          md << k << ',' << r.modes.frequency[k] << ','
-             << quoted(r.modes.name[k]) << ',' << quoted(target);
+          md << k << ','
+             << quoted(configurations[r.modes.configuration[k]].name) << ','
+             << r.modes.frequency[k] << ',' << quoted(r.modes.name[k]) << ','
+             << quoted(target);
           for (const double v : r.modes.shape[k])
             md << ',' << v;
           md << '\n';
@@ -621,8 +822,11 @@ namespace squeal
           io::OutputFile mac(work_dir + "/mac.csv");
           mac << "target";
           for (unsigned int k = 0; k < r.modes.frequency.size(); ++k)
-            mac << ",mode " << k << " (" << std::setprecision(6)
-                << r.modes.frequency[k] << " Hz)";
+            mac << ",\"mode " << k << " ("
+                << (configurations[r.modes.configuration[k]].name.empty() ?
+                      std::string() :
+                      configurations[r.modes.configuration[k]].name + ", ")
+                << std::setprecision(6) << r.modes.frequency[k] << " Hz)\"";
           mac << '\n' << std::setprecision(6);
           for (unsigned int i = 0; i < targets.size(); ++i)
             {

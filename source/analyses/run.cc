@@ -308,17 +308,27 @@ namespace squeal
       {
         const auto &analysis = prm.scene.analysis;
         if (analysis == "model updating")
-          for (const auto &q :
-               parse_updating_parameters(prm.updating.parameters))
-            try
-              {
-                scene.parameter(q.name);
-              }
-            catch (const std::runtime_error &e)
-              {
-                throw std::runtime_error("Model updating/Parameters: " +
-                                         std::string(e.what()));
-              }
+          {
+            const auto known = [&](const std::string &name,
+                                   const std::string &entry) {
+              try
+                {
+                  scene.parameter(name);
+                }
+              catch (const std::runtime_error &e)
+                {
+                  throw std::runtime_error("Model updating/" + entry + ": " +
+                                           std::string(e.what()));
+                }
+            };
+            for (const auto &q :
+                 parse_updating_parameters(prm.updating.parameters))
+              known(q.name, "Parameters");
+            for (const auto &c :
+                 parse_configurations(prm.updating.configurations))
+              for (const auto &v : c.values)
+                known(v.first, "Configurations");
+          }
         else if (analysis != "preload" &&
                  (analysis != "braking" || prm.transient.grid))
           scene::sweep_points(scene, prm.sweep);

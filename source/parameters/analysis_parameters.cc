@@ -469,13 +469,26 @@ namespace squeal
         "Targets",
         targets,
         Patterns::Anything(),
-        "CSV of the measured modes (relative to this file): a header line, "
-        "then per mode `label,frequency_Hz,weight,name` followed, when "
-        "Measurement points is set, by one shape value per measurement "
-        "point (or none). weight > 0 (empty: 1) divides the frequency's "
-        "variance; name pairs the mode with a model mode of that name "
-        "(a disc mode (n,m+-) or a body; empty: by shape, else by "
-        "frequency). Quote fields holding commas.");
+        "CSV of the measured modes (relative to this file), one per line "
+        "under a header naming the columns: label and frequency_Hz "
+        "(needed), weight (> 0, default 1: divides the frequency's "
+        "variance), name (pairs the mode with a model mode of that name: "
+        "a disc mode (n,m+-), or (n,m) for either sign, or a body and "
+        "direction as `support y`), configuration (one of Configurations; "
+        "empty: the file's values) and, with Measurement points, one "
+        "column per point whose header starts with `shape` (in the "
+        "points' order; empty values: no shape for that mode). Without "
+        "shape or name a mode is paired by frequency. Quote fields "
+        "holding commas.");
+      prm.declare_entry(
+        "Configurations",
+        configurations,
+        Patterns::Anything(),
+        "Model configurations the Targets may name, each the file's values "
+        "with some parameters that are not fitted changed: `name: "
+        "parameter = value, parameter = value; name: ...` (for example "
+        "`soft pad: pad.E = 1e9; Table 3.1: pad.E = 25e9`); every step "
+        "solves each configuration a target names.");
       prm.declare_entry(
         "Measurement points",
         measurement_points,
@@ -521,6 +534,7 @@ namespace squeal
       parameters         = prm.get("Parameters");
       targets            = prm.get("Targets");
       measurement_points = prm.get("Measurement points");
+      configurations     = prm.get("Configurations");
       measurement_error  = prm.get_double("Measurement error");
       max_iterations     = prm.get_integer("Maximum iterations");
       mac_threshold      = prm.get_double("MAC threshold");

@@ -160,6 +160,22 @@ namespace squeal
     } // namespace
 
 
+    bool
+    names_match(const std::string &wanted, const std::string &name)
+    {
+      if (wanted == name)
+        return true;
+      // `(n,m)` against `(n,m+)` / `(n,m-)`
+      return !wanted.empty() && wanted.back() == ')' &&
+             wanted.find_first_of("+-") == std::string::npos &&
+             name.size() == wanted.size() + 1 &&
+             name.compare(0, wanted.size() - 1, wanted, 0, wanted.size() - 1) ==
+               0 &&
+             (name[wanted.size() - 1] == '+' ||
+              name[wanted.size() - 1] == '-') &&
+             name.back() == ')';
+    }
+
     Pairing
     pair_targets(const std::vector<Target> &targets,
                  const ModelModes          &modes,
@@ -184,11 +200,15 @@ namespace squeal
       // repeated model frequencies (a symmetric body's doublets): any
       // combination of the group's shapes is a mode, so a measured shape is
       // compared with the group's span
+      const auto configuration = [&](const unsigned int k) {
+        return modes.configuration.empty() ? 0u : modes.configuration[k];
+      };
       std::vector<unsigned int> group_start(n);
       for (unsigned int k = 0; k < n; ++k)
         group_start[k] =
-          k > 0 && std::abs(modes.frequency[k] - modes.frequency[k - 1]) <=
-                     repeated * std::abs(modes.frequency[k]) ?
+          k > 0 && configuration(k) == configuration(k - 1) &&
+              std::abs(modes.frequency[k] - modes.frequency[k - 1]) <=
+                repeated * std::abs(modes.frequency[k]) ?
             group_start[k - 1] :
             k;
       Eigen::MatrixXd cost(m, n);
@@ -200,7 +220,9 @@ namespace squeal
               const double distance =
                 std::abs(modes.frequency[k] - t.frequency) / t.frequency;
               double c = distance;
-              if (!t.shape.empty())
+              if (configuration(k) != t.configuration)
+                c = forbidden;
+              else if (!t.shape.empty())
                 {
                   const double mac =
                     subspace_mac(t.shape, modes, group_start, k);
@@ -212,9 +234,10 @@ namespace squeal
                         forbidden;
                 }
               else if (!t.name.empty())
-                c = k < modes.name.size() && modes.name[k] == t.name ?
-                      distance :
-                      forbidden;
+                c =
+                  k < modes.name.size() && names_match(t.name, modes.name[k]) ?
+                    distance :
+                    forbidden;
               else if (distance > options.frequency_window)
                 c = forbidden;
               cost(i, k) = c;
@@ -242,7 +265,10 @@ namespace squeal
                  << " (or the modes above it are taken by other targets)";
           else if (!t.name.empty())
             what << "no free mode of the model's " << n << " is named '"
-                 << t.name << "'";
+                 << t.name << "'"
+                 << (t.configuration > 0 ?
+                       " in configuration " + std::to_string(t.configuration) :
+                       std::string());
           else
             what << "no free mode lies within "
                  << 100 * options.frequency_window << " % of its frequency";

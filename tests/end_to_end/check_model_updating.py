@@ -185,11 +185,20 @@ fails("bad_frequency", """subsection Model updating
 end
 """, "bad_frequency.csv', line 3: frequency_Hz = 'abc' is not a number")
 with open("short_shape.csv", "w") as f:
-    f.write("label,frequency_Hz,weight,name\na,18000,1,,1,2,3\n")
+    f.write("label,frequency_Hz,weight,name,shape a,shape b,shape c\n"
+            "a,18000,1,,1,2,3\n")
 fails("short_shape", """subsection Model updating
   set Targets = short_shape.csv
 end
-""", "3 shape values; give one per measurement point (7) or none")
+""", "3 shape columns; give one per measurement point (7) or none")
+with open("unknown_configuration.csv", "w") as f:
+    f.write("label,frequency_Hz,configuration\na,18000,stiff\n")
+fails("unknown_configuration", """subsection Model updating
+  set Targets = unknown_configuration.csv
+  set Configurations = soft: block.rho = 2000
+end
+""", "line 2: configuration 'stiff' is not one of Model "
+   "updating/Configurations (soft)")
 fails("no_targets", "", "needs Model updating/Parameters")
 fails("not_converged", fit_prm + """subsection Model updating
   set Maximum iterations = 1

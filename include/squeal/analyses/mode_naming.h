@@ -45,9 +45,11 @@ namespace squeal
      * The name of the mode re + i im of @p model at the parameter point
      * @p values: disc_mode_name() when the scene's disc carries more than
      * half of the mode's kinetic energy, else the name of the body that
-     * carries the most of it besides the disc. With @p shares, each body's
-     * share of the kinetic energy in [0, 1] (scene order, summing to 1).
-     * Collective over the model's communicator.
+     * carries the most of it besides the disc, followed with
+     * @p with_direction by the axis (`x`, `y` or `z`) along which that
+     * body's DoFs move most (sum of squares), as `support y`. With
+     * @p shares, each body's share of the kinetic energy in [0, 1] (scene
+     * order, summing to 1). Collective over the model's communicator.
      * @param re, im the mode's real and imaginary parts (n_dofs, locally
      * owned entries) [m, any scale]
      */
@@ -56,7 +58,8 @@ namespace squeal
               const parameters::ScalarPoint  &values,
               const physics::PETScVector     &re,
               const physics::PETScVector     &im,
-              std::vector<double>            *shares = nullptr);
+              std::vector<double>            *shares         = nullptr,
+              bool                            with_direction = false);
   } // namespace analyses
 } // namespace squeal
 

@@ -51,17 +51,39 @@ namespace squeal
     std::vector<MeasurementPoint>
     read_measurement_points(const std::string &file);
 
+    /** A model configuration: values of parameters that are not fitted. */
+    struct Configuration
+    {
+      std::string name; ///< "" for the file's own values
+      /// the parameters it changes and their values [their units]
+      std::vector<std::pair<std::string, double>> values;
+    };
+
     /**
-     * Reads Model updating/Targets: a header line, then
-     * `label,frequency_Hz,weight,name[,s_1,...,s_n]` per measured mode,
-     * fields with commas in double quotes; an empty weight is 1; the shape
-     * has no value or exactly @p n_points (one per measurement point).
-     * @throws std::runtime_error naming the file and line on a frequency
-     *   or weight that is not a number > 0, a shape of another length, a
-     *   label given twice, or a file without modes.
+     * Parses Model updating/Configurations (`name: p = v, p = v; ...`).
+     * @throws std::runtime_error naming the item on a missing name, a
+     *   value that is not a number, or a name given twice.
+     */
+    std::vector<Configuration>
+    parse_configurations(const std::string &text);
+
+    /**
+     * Reads Model updating/Targets: a header naming the columns (label,
+     * frequency_Hz; optional weight, name, configuration and the shape
+     * columns, whose headers start with `shape`), then one measured mode per
+     * line, fields with commas in double quotes. An empty weight is 1; a
+     * mode's shape values are all empty (no shape) or all given; a
+     * configuration is "" (index 0) or one of @p configurations (its index
+     * + 1).
+     * @throws std::runtime_error naming the file and line on a missing
+     *   column, a frequency or weight that is not a number > 0, a number
+     *   of shape columns other than @p n_points, an unknown configuration
+     *   (listing them), a label given twice, or a file without modes.
      */
     std::vector<updating::Target>
-    read_targets(const std::string &file, unsigned int n_points);
+    read_targets(const std::string                &file,
+                 unsigned int                      n_points,
+                 const std::vector<Configuration> &configurations = {});
 
     /**
      * Parses Model updating/Parameters (`name: lower, upper[, linear]; ...`).
@@ -129,8 +151,12 @@ namespace squeal
     private:
       updating::ModelModes
       modes_at(const std::vector<double> &values, bool with_names);
+      /// the log's summary, then write_files() on rank 0 (collective)
       void
       write_results(const updating::Result &result) const;
+      /// the output files (rank 0)
+      void
+      write_files(const updating::Result &result) const;
 
       const parameters::AllParameters &prm;
       const dealii::ParameterHandler  &handler;
@@ -140,16 +166,16 @@ namespace squeal
       physics::StructuralModel         model;
       std::string                      work_dir;
 
-      std::vector<updating::Parameter>  parameters;
+      std::vector<updating::Parameter> parameters;
+      /// the file's values first, then Model updating/Configurations
+      std::vector<Configuration>        configurations;
+      std::vector<bool>                 used; ///< per configuration
       std::vector<updating::Target>     targets;
       std::vector<MeasurementPoint>     points;
       std::unique_ptr<PointObservation> observation;
       double                            f_max        = 0.;
       bool                              names_needed = false;
       unsigned int                      n_solves     = 0;
-      /// the full shapes of the last modes_at(), for the names
-      std::vector<physics::PETScVector> last_shapes;
-      parameters::ScalarPoint           last_point;
     };
   } // namespace analyses
 } // namespace squeal

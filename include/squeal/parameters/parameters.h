@@ -490,6 +490,9 @@ namespace squeal
       std::string targets;
       /// CSV of the measurement points and directions ("": no shapes)
       std::string measurement_points;
+      /// `name: parameter = value, ...; ...`: the model configurations the
+      /// targets may name (values of parameters that are not fitted)
+      std::string configurations;
       double      measurement_error = 0.01; ///< relative std of a frequency [-]
       unsigned int max_iterations   = 30;   ///< Levenberg-Marquardt steps
       double       mac_threshold    = 0.6;  ///< least MAC of a pairing by shape

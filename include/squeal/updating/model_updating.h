@@ -56,8 +56,13 @@ namespace squeal
       std::string label;          ///< its name in reports
       double      frequency = 0.; ///< measured natural frequency [Hz], > 0
       /// > 0: the measured frequency's relative variance is sigma^2 / weight
-      double      weight = 1.;
-      std::string name; ///< model mode name to pair with ("": none)
+      double weight = 1.;
+      /// model mode name to pair with ("": none); a disc mode's name
+      /// without its sign, `(1,3)`, matches `(1,3+)` and `(1,3-)`
+      std::string name;
+      /// the model configuration it was measured in (ModelModes::
+      /// configuration; 0: the model's nominal one)
+      unsigned int configuration = 0;
       /// measured shape at the measurement points (any scale; empty: none)
       std::vector<double> shape;
     };
@@ -71,6 +76,10 @@ namespace squeal
       std::vector<std::string>         name; ///< per mode ("" unnamed)
       /// per mode, its shape at the measurement points (empty: none)
       std::vector<std::vector<double>> shape;
+      /// per mode, the configuration it belongs to (a model evaluated at
+      /// several values of parameters that are not fitted, as a brake at
+      /// two pad moduli); empty: every mode in configuration 0
+      std::vector<unsigned int> configuration;
     };
 
     /**
@@ -114,11 +123,11 @@ namespace squeal
     };
 
     /**
-     * Pairs every target with one model mode, one to one, by the optimal
-     * assignment: a target with a shape (and model shapes of its length)
-     * by cost 1 - MAC, modes below Options::mac_threshold forbidden (a
-     * mode whose frequency repeats to 1e-6, as a symmetric body's doublet,
-     * by the MAC with the span of its group's shapes, since any
+     * Pairs every target with one model mode of its configuration, one to
+     * one, by the optimal assignment: a target with a shape (and model shapes
+     * of its length) by cost 1 - MAC, modes below Options::mac_threshold
+     * forbidden (a mode whose frequency repeats to 1e-6, as a symmetric body's
+     * doublet, by the MAC with the span of its group's shapes, since any
      * combination of them is a mode); a target with a name among the modes of
      * that name by relative frequency distance; any other by relative frequency
      * distance within Options::frequency_window.
@@ -126,6 +135,14 @@ namespace squeal
      *   mode (its best MAC, or that no mode has its name), and if a
      *   target's shape length differs from the model's.
      */
+    /**
+     * Whether a target's mode name @p wanted matches a model mode's name
+     * @p name: equal, or @p wanted a disc mode's name without its sign,
+     * `(n,m)`, and @p name `(n,m+)` or `(n,m-)`.
+     */
+    bool
+    names_match(const std::string &wanted, const std::string &name);
+
     Pairing
     pair_targets(const std::vector<Target> &targets,
                  const ModelModes          &modes,
