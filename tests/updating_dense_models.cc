@@ -342,6 +342,10 @@ main(int argc, char **argv)
              !updating::names_match("(1,3+)", "(1,3-)") &&
                !updating::names_match("(1,3)", "(1,30+)") &&
                !updating::names_match("(1,3)", "(1,4+)"));
+  check_true("names: alternatives (0,3+)|support y",
+             updating::names_match("(0,3+)|support y", "support y") &&
+               updating::names_match("(0,3+)|support y", "(0,3+)") &&
+               !updating::names_match("(0,3+)|support y", "support x"));
 
   // 5. bad input
   {

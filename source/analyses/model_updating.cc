@@ -20,6 +20,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -95,6 +96,25 @@ namespace squeal
         return rows;
       }
 
+      /** @p text as a finite number (all of it), or nothing. */
+      std::optional<double>
+      to_number(const std::string &text)
+      {
+        std::size_t used = 0;
+        double      value;
+        try
+          {
+            value = std::stod(text, &used);
+          }
+        catch (const std::exception &)
+          {
+            return {};
+          }
+        if (used == 0 || used != text.size() || !std::isfinite(value))
+          return {};
+        return value;
+      }
+
       /** @p field as a number, or an error naming file, line and column. */
       double
       number_of(const std::string &field,
@@ -102,21 +122,12 @@ namespace squeal
                 const unsigned int line,
                 const std::string &column)
       {
-        std::size_t used = 0;
-        double      value;
-        try
-          {
-            value = std::stod(field, &used);
-          }
-        catch (const std::exception &)
-          {
-            used = 0;
-          }
-        if (used == 0 || used != field.size() || !std::isfinite(value))
+        const auto value = to_number(field);
+        if (!value)
           throw std::runtime_error("'" + file + "', line " +
                                    std::to_string(line) + ": " + column +
                                    " = '" + field + "' is not a number");
-        return value;
+        return *value;
       }
     } // namespace
 
@@ -178,20 +189,11 @@ namespace squeal
                                          "' is not `parameter = value`");
               const std::string name  = csv_fields(pair.substr(0, equal))[0];
               const std::string value = csv_fields(pair.substr(equal + 1))[0];
-              std::size_t       used  = 0;
-              double            v     = 0.;
-              try
-                {
-                  v = std::stod(value, &used);
-                }
-              catch (const std::exception &)
-                {
-                  used = 0;
-                }
-              if (used == 0 || used != value.size())
+              const auto        v     = to_number(value);
+              if (!v)
                 throw std::runtime_error(where + ": the value '" + value +
                                          "' is not a number");
-              c.values.emplace_back(name, v);
+              c.values.emplace_back(name, *v);
             }
           for (const auto &other : result)
             if (other.name == c.name)
@@ -335,20 +337,11 @@ namespace squeal
                                              "upper` and optionally `linear`");
           for (unsigned int b = 0; b < 2; ++b)
             {
-              std::size_t used = 0;
-              double      v    = 0.;
-              try
-                {
-                  v = std::stod(f[b], &used);
-                }
-              catch (const std::exception &)
-                {
-                  used = 0;
-                }
-              if (used == 0 || used != f[b].size())
+              const auto v = to_number(f[b]);
+              if (!v)
                 throw std::runtime_error(where + ": the bound '" + f[b] +
                                          "' is not a number");
-              (b == 0 ? q.lower : q.upper) = v;
+              (b == 0 ? q.lower : q.upper) = *v;
             }
           q.log_scale = f.size() < 3 || f[2] == "log";
           result.push_back(q);
@@ -645,8 +638,8 @@ namespace squeal
       const auto          reference = model.parts().reference;
       for (const auto &q : parameters)
         start.push_back(reference.get(q.name));
-      std::ostringstream log;
-      updating::Result   result = updating::update(
+      // the iteration's progress on rank 0's log as it goes
+      updating::Result result = updating::update(
         [this](const std::vector<double> &v) {
           return modes_at(v, names_needed);
         },
@@ -654,8 +647,7 @@ namespace squeal
         start,
         targets,
         options,
-        &log);
-      pcout << log.str();
+        pcout.is_active() ? &pcout.get_stream() : nullptr);
       if (!result.converged && u.max_iterations > 0)
         throw std::runtime_error(
           "model updating did not converge within Model updating/Maximum "

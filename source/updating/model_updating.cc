@@ -163,6 +163,10 @@ namespace squeal
     bool
     names_match(const std::string &wanted, const std::string &name)
     {
+      // alternatives: `(0,3+)|support y`
+      if (const auto bar = wanted.find('|'); bar != std::string::npos)
+        return names_match(wanted.substr(0, bar), name) ||
+               names_match(wanted.substr(bar + 1), name);
       if (wanted == name)
         return true;
       // `(n,m)` against `(n,m+)` / `(n,m-)`
@@ -264,11 +268,28 @@ namespace squeal
                  << ", below the MAC threshold " << options.mac_threshold
                  << " (or the modes above it are taken by other targets)";
           else if (!t.name.empty())
-            what << "no free mode of the model's " << n << " is named '"
-                 << t.name << "'"
-                 << (t.configuration > 0 ?
-                       " in configuration " + std::to_string(t.configuration) :
-                       std::string());
+            {
+              what << "no free mode of the model's " << n << " is named '"
+                   << t.name << "'"
+                   << (t.configuration > 0 ? " in configuration " +
+                                               std::to_string(t.configuration) :
+                                             std::string());
+              // the modes nearest in frequency, to show what the model has
+              std::vector<unsigned int> near;
+              for (unsigned int k = 0; k < n; ++k)
+                if (configuration(k) == t.configuration)
+                  near.push_back(k);
+              std::sort(near.begin(), near.end(), [&](auto a, auto b) {
+                return std::abs(modes.frequency[a] - t.frequency) <
+                       std::abs(modes.frequency[b] - t.frequency);
+              });
+              near.resize(std::min<std::size_t>(near.size(), 4));
+              what << "; the nearest are";
+              for (const unsigned int k : near)
+                what << " " << std::setprecision(5) << modes.frequency[k]
+                     << " Hz '" << (k < modes.name.size() ? modes.name[k] : "")
+                     << "'";
+            }
           else
             what << "no free mode lies within "
                  << 100 * options.frequency_window << " % of its frequency";
@@ -339,6 +360,12 @@ namespace squeal
       r.stop_reason        = "iteration limit";
       while (r.iterations < options.max_iterations)
         {
+          if (trial >= 3 * options.max_iterations + 10)
+            {
+              r.stop_reason = "trial limit (3 x Maximum iterations + 10 "
+                              "evaluations)";
+              break;
+            }
           const Eigen::MatrixXd A = now.J.transpose() * now.J;
           const Eigen::VectorXd g = now.J.transpose() * now.r;
           // the projected gradient: components pushing out of a bound at it
@@ -353,15 +380,34 @@ namespace squeal
               r.stop_reason = "zero gradient";
               break;
             }
-          Eigen::VectorXd D       = A.diagonal();
-          const double    largest = std::max(D.maxCoeff(), 1e-300);
+          // the step in the free parameters only: one held at a bound that
+          // the gradient pushes against stays there (projected
+          // Levenberg-Marquardt, an active set of bounds)
+          std::vector<unsigned int> unbound;
           for (unsigned int j = 0; j < n; ++j)
-            D[j] = std::max(D[j], 1e-12 * largest);
+            if (free_g[j] != 0. || (x[j] > lo[j] && x[j] < hi[j]))
+              unbound.push_back(j);
+          const unsigned int nf = unbound.size();
+          Eigen::MatrixXd    Af(nf, nf);
+          Eigen::VectorXd    gf(nf);
+          for (unsigned int a = 0; a < nf; ++a)
+            {
+              gf[a] = g[unbound[a]];
+              for (unsigned int b = 0; b < nf; ++b)
+                Af(a, b) = A(unbound[a], unbound[b]);
+            }
+          Eigen::VectorXd D       = Af.diagonal();
+          const double    largest = std::max(D.maxCoeff(), 1e-300);
+          for (unsigned int a = 0; a < nf; ++a)
+            D[a] = std::max(D[a], 1e-12 * largest);
           const Eigen::MatrixXd lhs =
-            A + damping * Eigen::MatrixXd(D.asDiagonal());
-          const Eigen::VectorXd dx      = lhs.ldlt().solve(-g);
-          Eigen::VectorXd       trial_x = (x + dx).cwiseMax(lo).cwiseMin(hi);
-          const double          step    = (trial_x - x).norm();
+            Af + damping * Eigen::MatrixXd(D.asDiagonal());
+          const Eigen::VectorXd dxf     = lhs.ldlt().solve(-gf);
+          Eigen::VectorXd       trial_x = x;
+          for (unsigned int a = 0; a < nf; ++a)
+            trial_x[unbound[a]] += dxf[a];
+          trial_x           = trial_x.cwiseMax(lo).cwiseMin(hi);
+          const double step = (trial_x - x).norm();
           if (step <= options.tolerance * (1. + x.norm()))
             {
               r.converged   = true;

@@ -57,8 +57,8 @@ namespace squeal
       double      frequency = 0.; ///< measured natural frequency [Hz], > 0
       /// > 0: the measured frequency's relative variance is sigma^2 / weight
       double weight = 1.;
-      /// model mode name to pair with ("": none); a disc mode's name
-      /// without its sign, `(1,3)`, matches `(1,3+)` and `(1,3-)`
+      /// model mode name to pair with ("": none; see names_match(): a
+      /// disc mode's name without its sign, alternatives split by `|`)
       std::string name;
       /// the model configuration it was measured in (ModelModes::
       /// configuration; 0: the model's nominal one)
@@ -138,7 +138,9 @@ namespace squeal
     /**
      * Whether a target's mode name @p wanted matches a model mode's name
      * @p name: equal, or @p wanted a disc mode's name without its sign,
-     * `(n,m)`, and @p name `(n,m+)` or `(n,m-)`.
+     * `(n,m)`, and @p name `(n,m+)` or `(n,m-)`; @p wanted may list
+     * alternatives separated by `|` (`(0,3+)|support y`: a disc mode that
+     * the support's motion may dominate).
      */
     bool
     names_match(const std::string &wanted, const std::string &name);
