@@ -280,6 +280,10 @@ namespace squeal
                               scene::sweep_points(scene, prm.sweep).size()) +
                             " runs" :
                           std::string());
+        else if (prm.scene.analysis == "model updating")
+          std::cout << ", "
+                    << parse_updating_parameters(prm.updating.parameters).size()
+                    << " parameters fitted to " << prm.updating.targets;
         else if (prm.scene.analysis != "preload")
           std::cout << ", " << prm.sweep.second.values.size() << " x "
                     << prm.sweep.first.values.size() << " sweep points";
@@ -288,7 +292,10 @@ namespace squeal
         std::cout << ", output to " << prm.output.directory << ")" << std::endl;
         if (const std::string w = resolution_warning(prm); !w.empty())
           std::cout << w << std::endl;
-        std::cout << "Named parameters (Sweep/First and Second parameter):";
+        std::cout << (prm.scene.analysis == "model updating" ?
+                        "Named parameters (Model updating/Parameters):" :
+                        "Named parameters (Sweep/First and Second "
+                        "parameter):");
         for (const auto &p : scene.parameters())
           std::cout << "\n  " << p.name << " = " << p.value
                     << (p.unit.empty() ? "" : " " + p.unit);
