@@ -481,8 +481,7 @@ namespace squeal
     }
 
     updating::ModelModes
-    ModelUpdatingAnalysis::modes_at(const std::vector<double> &values,
-                                    const bool                 with_names)
+    ModelUpdatingAnalysis::modes_at(const std::vector<double> &values)
     {
       TimerOutput::Scope       t(timer, "eigensolve and sensitivities");
       const auto               parts = model.parts();
@@ -513,14 +512,16 @@ namespace squeal
               for (unsigned int k = 0; k < parts.size(); ++k)
                 needed[k] = needed[k] || d.mass[k] != 0. ||
                             d.symmetric_stiffness[k] != 0.;
-            physics::PETScVector Aphi, zero;
+            if (modes.shape.empty())
+              continue;
+            physics::PETScVector Aphi(modes.shape[0]), zero(modes.shape[0]);
+            zero = 0.;
             for (unsigned int m = 0; m < modes.frequency.size(); ++m)
               {
                 const auto         &phi = modes.shape[m];
                 const double        f   = modes.frequency[m];
                 const double        w2  = std::pow(2 * M_PI * f, 2);
                 std::vector<double> q(parts.size(), 0.);
-                Aphi.reinit(phi);
                 for (unsigned int k = 0; k < parts.size(); ++k)
                   if (needed[k])
                     {
@@ -542,47 +543,14 @@ namespace squeal
                 result.shape.push_back(observation ? (*observation)(phi) :
                                                      std::vector<double>());
                 result.configuration.push_back(c);
-                if (with_names)
-                  {
-                    TimerOutput::Scope tn(timer, "mode names");
-                    zero.reinit(phi);
-                    result.name.push_back(
-                      mode_name(model, p, phi, zero, nullptr, true));
-                  }
-                else
-                  result.name.push_back("");
+                // named in every evaluation: a few per cent of the solve's
+                // time, and the names belong to exactly these modes
+                result.name.push_back(
+                  mode_name(model, p, phi, zero, nullptr, true));
               }
           }
       return result;
     }
-
-    namespace
-    {
-      /**
-       * The names of @p named (a second solve at the same point) given to
-       * the modes of @p modes: each takes the name of the mode of its
-       * configuration nearest in frequency, "" if none lies within 1e-6
-       * of it (a second solve need not return the same count at the
-       * band's edge, nor the same order of a doublet's twins, which share
-       * a name).
-       */
-      void
-      copy_names(const updating::ModelModes &named, updating::ModelModes &modes)
-      {
-        modes.name.assign(modes.frequency.size(), "");
-        for (unsigned int k = 0; k < modes.frequency.size(); ++k)
-          {
-            double best = 1e-6 * modes.frequency[k];
-            for (unsigned int l = 0; l < named.frequency.size(); ++l)
-              if (named.configuration[l] == modes.configuration[k] &&
-                  std::abs(named.frequency[l] - modes.frequency[k]) <= best)
-                {
-                  best = std::abs(named.frequency[l] - modes.frequency[k]);
-                  modes.name[k] = named.name[l];
-                }
-          }
-      }
-    } // namespace
 
     void
     ModelUpdatingAnalysis::run()
@@ -610,10 +578,7 @@ namespace squeal
           observation = std::make_unique<PointObservation>(model, points);
         double highest = 0.;
         for (const auto &t : targets)
-          {
-            highest      = std::max(highest, t.frequency);
-            names_needed = names_needed || (!t.name.empty() && t.shape.empty());
-          }
+          highest = std::max(highest, t.frequency);
         f_max = u.maximum_frequency > 0. ? u.maximum_frequency : 1.5 * highest;
         if (!(f_max > highest))
           throw std::runtime_error(
@@ -640,9 +605,7 @@ namespace squeal
         start.push_back(reference.get(q.name));
       // the iteration's progress on rank 0's log as it goes
       updating::Result result = updating::update(
-        [this](const std::vector<double> &v) {
-          return modes_at(v, names_needed);
-        },
+        [this](const std::vector<double> &v) { return modes_at(v); },
         parameters,
         start,
         targets,
@@ -655,12 +618,6 @@ namespace squeal
           std::to_string(u.max_iterations) + " steps (cost " +
           std::to_string(result.cost) +
           "); raise it, or narrow the parameters' bounds");
-      // the names of the start and fitted modes, for the report
-      if (!names_needed)
-        {
-          copy_names(modes_at(result.initial, true), result.initial_modes);
-          copy_names(modes_at(result.value, true), result.modes);
-        }
       {
         TimerOutput::Scope t(timer, "output");
         write_results(result);

@@ -149,8 +149,10 @@ namespace squeal
       run();
 
     private:
+      /// the named modes of every configuration a target uses, with their
+      /// frequency derivatives and shapes at the measurement points
       updating::ModelModes
-      modes_at(const std::vector<double> &values, bool with_names);
+      modes_at(const std::vector<double> &values);
       /// the log's summary, then write_files() on rank 0 (collective)
       void
       write_results(const updating::Result &result) const;
@@ -173,9 +175,8 @@ namespace squeal
       std::vector<updating::Target>     targets;
       std::vector<MeasurementPoint>     points;
       std::unique_ptr<PointObservation> observation;
-      double                            f_max        = 0.;
-      bool                              names_needed = false;
-      unsigned int                      n_solves     = 0;
+      double                            f_max    = 0.;
+      unsigned int                      n_solves = 0;
     };
   } // namespace analyses
 } // namespace squeal
