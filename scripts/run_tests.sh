@@ -4,7 +4,8 @@
 # Tests labelled "long" are left out; run them with: cd build && ctest -L long
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-"$here/scripts/setup.sh"
+# --paraview: the ParaView test (end_to_end/paraview) runs too
+"$here/scripts/setup.sh" --paraview
 # every C++ file follows .clang-format (deal.II's style)
 "$here/scripts/check_format.sh"
 cd "$here/build"

@@ -75,7 +75,8 @@ namespace squeal
         "(the disc's face) in reach of it. Without sliding, the master turns "
         "about the disc's axis in Interface/Rotation sense. mu and k_n "
         "default to Interface/Friction coefficient and Normal stiffness; "
-        "named parameters <name>.mu and <name>.k_n.");
+        "named parameters <name>.mu and <name>.k_n, and with two or more "
+        "pairs contact.mu, which sets every pair's mu at once.");
       prm.declare_entry(
         "Ties",
         ties,

@@ -23,9 +23,20 @@ namespace squeal
     using namespace dealii;
     using internal::check;
     using internal::str;
+    const std::vector<std::string> *
+    ScalarPoint::members(const std::string &name) const
+    {
+      for (const auto &[n, m] : links)
+        if (n == name)
+          return &m;
+      return nullptr;
+    }
+
     double
     ScalarPoint::get(const std::string &name) const
     {
+      if (const auto *m = members(name))
+        return get(m->front());
       for (const auto &[n, v] : named)
         if (n == name)
           return v;
@@ -36,6 +47,12 @@ namespace squeal
     void
     ScalarPoint::set(const std::string &name, const double value)
     {
+      if (const auto *m = members(name))
+        {
+          for (const std::string &member : *m)
+            set(member, value);
+          return;
+        }
       for (auto &[n, v] : named)
         if (n == name)
           {
@@ -54,9 +71,26 @@ namespace squeal
       named.emplace_back(name, value);
     }
 
+    void
+    ScalarPoint::link(const std::string              &name,
+                      const std::vector<std::string> &group)
+    {
+      if (has(name))
+        throw std::runtime_error("two parameters are called '" + name +
+                                 "'; give the scene's items different names");
+      if (group.empty())
+        throw std::runtime_error("linked parameter '" + name +
+                                 "' has no members");
+      for (const std::string &member : group)
+        get(member); // throws with the names
+      links.emplace_back(name, group);
+    }
+
     bool
     ScalarPoint::has(const std::string &name) const
     {
+      if (members(name) != nullptr)
+        return true;
       return std::any_of(named.begin(), named.end(), [&](const auto &nv) {
         return nv.first == name;
       });
@@ -68,6 +102,8 @@ namespace squeal
       std::string list;
       for (const auto &nv : named)
         list += (list.empty() ? "" : "|") + nv.first;
+      for (const auto &nm : links)
+        list += (list.empty() ? "" : "|") + nm.first;
       return list.empty() ? "(none)" : list;
     }
 
@@ -148,7 +184,8 @@ namespace squeal
                         "plots): a name of the scene's parameters, "
                         "'<body>.E' (Young's modulus, Pa), '<body>.rho' "
                         "(density, kg/m^3), '<pair>.mu' (friction "
-                        "coefficient), '<pair>.k_n' (interface stiffness, "
+                        "coefficient; 'contact.mu' sets every pair's at "
+                        "once), '<pair>.k_n' (interface stiffness, "
                         "N/m^3), '<springs>.k' (N/m per spring), "
                         "'damping.alpha' (1/s), 'damping.beta' (s), "
                         "'<body>.alpha', '<body>.beta' (a body with its own "

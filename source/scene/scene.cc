@@ -146,6 +146,14 @@ namespace squeal
                           k_n_max,
                           false});
         }
+      if (contact_pairs.size() > 1) // links(): every pair's mu at once
+        list.push_back({"contact.mu",
+                        "",
+                        contact_pairs[0].friction_coefficient,
+                        0.,
+                        false,
+                        10.,
+                        false});
       for (const SpringSet &s : springs)
         list.push_back(
           {s.name + ".k", "N_per_m", s.stiffness, 0., false, k_max, true});
@@ -173,6 +181,10 @@ namespace squeal
     Scene::set_nominal(const std::string &name, const double value)
     {
       parameter(name); // throws on an unknown name
+      for (const auto &[link, members] : links())
+        if (link == name)
+          for (const std::string &member : members)
+            set_nominal(member, value);
       const auto dot  = name.rfind('.');
       const auto item = name.substr(0, dot);
       const auto key  = name.substr(dot + 1);
@@ -204,9 +216,30 @@ namespace squeal
     Scene::nominal_point() const
     {
       parameters::ScalarPoint p;
+      const auto              linked = links();
       for (const auto &n : parameters())
-        p.add(n.name, n.value);
+        if (std::none_of(linked.begin(), linked.end(), [&](const auto &l) {
+              return l.first == n.name;
+            }))
+          p.add(n.name, n.value);
+      for (const auto &[name, members] : linked)
+        p.link(name, members);
       return p;
+    }
+
+    std::vector<std::pair<std::string, std::vector<std::string>>>
+    Scene::links() const
+    {
+      std::vector<std::pair<std::string, std::vector<std::string>>> out;
+      if (contact_pairs.size() > 1)
+        {
+          // the preload and the braking run need the pairs' mu equal
+          std::vector<std::string> members;
+          for (const ContactPair &c : contact_pairs)
+            members.push_back(c.name + ".mu");
+          out.emplace_back("contact.mu", members);
+        }
+      return out;
     }
 
     double

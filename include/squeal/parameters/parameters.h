@@ -311,7 +311,17 @@ namespace squeal
        */
       void
       add(const std::string &name, const double value);
-      /** Whether the point has a parameter called @p name. */
+      /**
+       * Adds @p name as a linked parameter: set() sets every one of
+       * @p members (parameters of the point) to its value, get() returns
+       * the first member's. A sweep over `contact.mu` moves the friction
+       * coefficients of all contact pairs together this way.
+       * @throws std::runtime_error if the point has a parameter called
+       * @p name, or lacks a member.
+       */
+      void
+      link(const std::string &name, const std::vector<std::string> &members);
+      /** Whether the point has a parameter (or a link) called @p name. */
       bool
       has(const std::string &name) const;
       /** The names and values, in the order they were added. */
@@ -326,6 +336,10 @@ namespace squeal
 
     private:
       std::vector<std::pair<std::string, double>> named;
+      /// linked name -> the parameters it sets
+      std::vector<std::pair<std::string, std::vector<std::string>>> links;
+      const std::vector<std::string> *
+      members(const std::string &name) const;
     };
 
     /** One axis of a sweep: which parameter and its values. */

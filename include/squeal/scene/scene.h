@@ -346,6 +346,15 @@ namespace squeal
       void
       set_nominal(const std::string &name, double value);
 
+      /**
+       * The linked parameters: each name with the parameters it sets
+       * together. `contact.mu` (a scene with two or more contact pairs)
+       * sets every pair's friction coefficient, so a sweep or a fit moves
+       * them as one.
+       */
+      std::vector<std::pair<std::string, std::vector<std::string>>>
+      links() const;
+
       /** Every named parameter at its nominal value. */
       parameters::ScalarPoint
       nominal_point() const;

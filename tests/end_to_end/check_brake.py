@@ -1,0 +1,147 @@
+"""The generated passenger-car brake (scripts/make_brake.py, issue 24) at its
+coarse size and degree 1:
+- the script writes the mesh and scene; squeal validates them (six bodies,
+  two contact pairs, every body held);
+- preload (steady sliding, mu = 0.3): the hydraulic force pair F on the
+  piston and the caliper bore presses both pads, the outer one through the
+  fist caliper, so the total normal force is 2 F (the axial springs of the
+  ears and guide pins, 1e5 N/m, carry less than 1e-3 of it) and the
+  friction force mu times it (1e-6: every node slips);
+- CEA (full solver, 500-6000 Hz): the linked parameter contact.mu sweeps
+  both pairs' friction coefficients together: its eigenvalues at 0.5 equal
+  those of a run with both pairs set to 0.5 by Interface/Friction
+  coefficient (1e-10); at contact.mu = 0 every eigenvalue decays, at the
+  rate of Rayleigh damping within its bounds alpha / 2 <= -Re lambda <=
+  (alpha + beta omega^2) / 2 (1 %: the interface and springs are not
+  damped); disc modes are named (n,m+-).
+Usage: check_brake.py SQUEAL WORK_DIR"""
+import csv
+import math
+import os
+import subprocess
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, here)
+from checks import check, finish, run_squeal  # noqa: E402
+
+squeal, work = sys.argv[1], sys.argv[2]
+os.makedirs(work, exist_ok=True)
+os.chdir(work)
+
+script = os.path.join(here, "..", "..", "scripts", "make_brake.py")
+r = subprocess.run([sys.executable, script, "--size", "coarse", "--out",
+                    "brake"], capture_output=True, text=True)
+check("make_brake.py writes the brake", r.returncode == 0 and
+      os.path.isfile("brake/brake.msh") and
+      os.path.isfile("brake/brake_scene.prm"), r.stdout + r.stderr,
+      show=True)
+if r.returncode != 0:
+    finish()
+force = 2e6 * math.pi * 0.054 ** 2 / 4   # the script's piston force [N]
+
+with open("base.prm", "w") as f:
+    f.write("""INCLUDE brake/brake_scene.prm
+subsection Mesh
+  set Finite element degree = 1
+end
+subsection Interface
+  set Normal stiffness = 1e13
+end
+subsection Damping
+  set Alpha = 0.02
+  set Beta = 1e-7
+end
+""")
+
+# --validate: the scene against its mesh
+with open("validate.prm", "w") as f:
+    f.write("include base.prm\nsubsection Scene\n  set Analysis = preload\n"
+            "end\n")
+r = subprocess.run([squeal, "--validate", "validate.prm"],
+                   capture_output=True, text=True)
+bodies = ["disc", "friction material", "backplates", "piston", "caliper",
+          "bracket"]
+check("the scene validates", r.returncode == 0 and
+      all(f"{b}.E" in r.stdout for b in bodies) and "contact.mu" in
+      r.stdout, (r.stdout + r.stderr)[-2000:])
+
+# Preload: the force loop through the caliper.
+out, log = run_squeal(squeal, "base.prm", "preload", """subsection Scene
+  set Analysis = preload
+end
+subsection Interface
+  set Friction coefficient = 0.3
+end
+subsection Preload
+  set Friction = steady sliding
+end
+""")
+summary = {}
+with open(os.path.join(out, "preload_summary.txt")) as f:
+    for row in f:
+        if len(row.split()) == 2:
+            summary[row.split()[0]] = float(row.split()[1])
+fn = summary.get("normal_force_N", 0.)
+ft = summary.get("friction_force_N", 0.)
+check("both pads pressed by the caliper's force loop",
+      abs(fn - 2 * force) < 1e-3 * 2 * force,
+      f"normal force {fn:.6g} N, 2 F = {2 * force:.6g} N", show=True)
+check("every node slides: friction = mu x normal",
+      fn > 0 and abs(ft - 0.3 * fn) < 1e-6 * fn,
+      f"friction {ft:.10g} N, 0.3 x normal {0.3 * fn:.10g} N", show=True)
+
+
+def cea(name, first, values, mu=None, shapes="none"):
+    interface = (f"subsection Interface\n  set Friction coefficient = {mu}\n"
+                 "end\n") if mu is not None else ""
+    folder, _ = run_squeal(squeal, "base.prm", name, f"""subsection Scene
+  set Analysis = cea
+end
+{interface}subsection Eigensolver
+  set Method = full
+  set Minimum frequency = 500
+  set Maximum frequency = 6000
+end
+subsection Sweep
+  set First parameter = {first}
+  set First values = {values}
+  set Second parameter = friction material.E
+  set Second values = 8e9
+end
+subsection Output
+  set Mode shapes = {shapes}
+end
+""")
+    with open(os.path.join(folder, "eigenvalues.csv")) as f:
+        rows = list(csv.DictReader(f))
+    by_point = {}
+    for row in rows:
+        by_point.setdefault(int(row["point"]), []).append(
+            complex(float(row["re_per_s"]),
+                    2 * math.pi * float(row["freq_Hz"])))
+    return folder, {p: sorted(v, key=lambda z: z.imag)
+                    for p, v in by_point.items()}
+
+
+linked_dir, linked = cea("cea_linked", "contact.mu", "0, 0.5", shapes="all")
+_, single = cea("cea_pairs", "damping.alpha", "0.02", mu=0.5)
+a, b = linked.get(1, []), single.get(0, [])
+worst = max((abs(x - y) / abs(x) for x, y in zip(a, b)), default=1.)
+check("contact.mu moves both pairs", len(a) == len(b) >= 10 and
+      worst < 1e-10, f"{len(a)} and {len(b)} eigenvalues at mu = 0.5, "
+      f"largest |dl|/|l| {worst:.1e}", show=True)
+alpha, beta = 0.02, 1e-7   # base.prm's Damping
+free = linked.get(0, [])
+bad = [z for z in free if not (0.99 * alpha / 2 <= -z.real <=
+                               1.01 * (alpha + beta * z.imag ** 2) / 2)]
+check("at contact.mu = 0 every mode decays within the Rayleigh bounds",
+      len(free) >= 10 and not bad, f"{len(free)} modes, outside: {bad[:3]}",
+      show=True)
+with open(os.path.join(linked_dir, "mode_participation.csv")) as f:
+    names = {row["name"] for row in csv.DictReader(f)}
+check("disc modes named (0,m) and (1,m)",
+      all(any(n.startswith(p) for n in names) for p in ("(0,2", "(0,3",
+                                                        "(1,")),
+      sorted(names)[:12])
+finish()
