@@ -32,7 +32,8 @@ namespace squeal
             // transpose may fall outside the common pattern, which
             // MatrixParts::combine() handles
             copy->transpose();
-            part.matrix = copy.get();
+            part.matrix      = copy.get();
+            part.own_pattern = false; // no longer within the common one
             copies.push_back(std::move(copy));
           }
     }

@@ -147,6 +147,44 @@ namespace squeal
     }
 
     void
+    store_nonzeros_only(PETScMatrix    &A,
+                        const IndexSet &owned,
+                        const MPI_Comm  comm)
+    {
+      DynamicSparsityPattern dsp(owned);
+      std::vector<std::pair<std::vector<types::global_dof_index>,
+                            std::vector<PetscScalar>>>
+        rows;
+      rows.reserve(owned.n_elements());
+      for (const auto row : owned)
+        {
+          PetscInt           n_cols = 0;
+          const PetscInt    *cols   = nullptr;
+          const PetscScalar *values = nullptr;
+          AssertThrow(MatGetRow(A, row, &n_cols, &cols, &values) == 0,
+                      ExcMessage("store_nonzeros_only: MatGetRow failed"));
+          auto &[c, v] = rows.emplace_back();
+          for (PetscInt j = 0; j < n_cols; ++j)
+            if (values[j] != 0.)
+              {
+                c.push_back(cols[j]);
+                v.push_back(values[j]);
+              }
+          MatRestoreRow(A, row, &n_cols, &cols, &values);
+          dsp.add_entries(row, c.begin(), c.end());
+        }
+      A.reinit(owned, owned, dsp, comm);
+      std::size_t i = 0;
+      for (const auto row : owned)
+        {
+          const auto &[c, v] = rows[i++];
+          if (!c.empty())
+            A.set(row, c, v);
+        }
+      A.compress(VectorOperation::insert);
+    }
+
+    void
     copy_to_serial(const PETScMatrix    &K,
                    SparsityPattern      &pattern,
                    SparseMatrix<double> &target)
@@ -527,6 +565,24 @@ namespace squeal
 
       constrained_diagonal =
         set_constrained_rows(*this, parts, fixed_mass, fixed_stiffness);
+      // Every part but the common mass and stiffness (which carry the
+      // constrained rows) is stored on its own nonzeros: a spring set or an
+      // interface touches a few hundred rows, a body a fraction of them, and
+      // on the common pattern each would cost a whole matrix in memory and
+      // in every product.
+      for (unsigned int k = 0; k < parts.size(); ++k)
+        if (k != fixed_mass && k != fixed_stiffness)
+          {
+            const auto it =
+              std::find_if(part_matrices.begin(),
+                           part_matrices.end(),
+                           [&](const auto &m) {
+                             return m.get() == parts.parts[k].matrix;
+                           });
+            Assert(it != part_matrices.end(), ExcInternalError());
+            store_nonzeros_only(**it, locally_owned_dofs, comm);
+            parts.parts[k].own_pattern = true;
+          }
       assembled = parts;
     }
 
@@ -709,11 +765,11 @@ namespace squeal
     void
     MatrixParts::combine(const Coefficients &c, PETScMatrix &result) const
     {
-      // All parts are built on one sparsity pattern (every entry of it
-      // stored): copy one and add the value arrays of the others.
-      // PETScMatrix::add() (DIFFERENT_NONZERO_PATTERN) would rebuild the
-      // pattern for every part, 15x slower; a part whose stored entries
-      // differ in number is added that way.
+      // The first part is on the common pattern: copy it and add the
+      // others, on the same pattern or on their own nonzeros within it
+      // (own_pattern). PETScMatrix::add() (DIFFERENT_NONZERO_PATTERN) would
+      // rebuild the pattern for every part, 15x slower; a part of another
+      // pattern (a transposed copy) is added that way.
       result.reinit(matrix(0));
       result.copy_from(matrix(0));
       result *= c[0];
@@ -728,9 +784,10 @@ namespace squeal
           if (MatAXPY(result,
                       c[k],
                       matrix(k),
+                      parts[k].own_pattern ? SUBSET_NONZERO_PATTERN :
                       stored(matrix(k)) == n_stored ?
-                        SAME_NONZERO_PATTERN :
-                        DIFFERENT_NONZERO_PATTERN) != 0)
+                                             SAME_NONZERO_PATTERN :
+                                             DIFFERENT_NONZERO_PATTERN) != 0)
             throw std::runtime_error("matrix parts: MatAXPY failed");
     }
 

@@ -105,6 +105,9 @@ namespace squeal
         std::string        factor;         ///< friction: the pair's `<pair>.mu`
         std::string        damping; ///< mass: an alpha, stiffness: a beta
         bool               springs = false; ///< a spring set's stiffness
+        /// stored on its own nonzero entries, a subset of the first part's
+        /// pattern (false: stored on the common pattern)
+        bool own_pattern = false;
       };
       /// One coefficient per part.
       using Coefficients = std::vector<double>;
@@ -120,7 +123,8 @@ namespace squeal
         Coefficients springs;             ///< the spring sets' parts [N/m]
       };
 
-      /// the parts; the first is a mass part, all share one pattern
+      /// the parts; the first is a mass part on the common pattern, the
+      /// others on it or on their own nonzeros within it (own_pattern)
       std::vector<Part> parts;
       /// Parameters held at a value in parts of coefficient 1 (a body's E
       /// or rho when the model does not vary it): every point must have
@@ -498,6 +502,17 @@ namespace squeal
     transfer_field(const StructuralModel                   &from,
                    const std::vector<std::complex<double>> &field,
                    const StructuralModel                   &to);
+
+    /**
+     * Re-stores @p matrix (n x n, rows @p owned on this process of
+     * @p comm) on its nonzero entries only: the pattern shrinks to them, the
+     * values stay. Entries that are exactly zero leave the pattern.
+     * @throws dealii::ExcMessage if PETSc cannot read a row.
+     */
+    void
+    store_nonzeros_only(PETScMatrix            &matrix,
+                        const dealii::IndexSet &owned,
+                        MPI_Comm                comm);
 
     /**
      * Copies a (serial, one-process) PETSc matrix into a deal.II sparse

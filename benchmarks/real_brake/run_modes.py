@@ -1,0 +1,199 @@
+#!/usr/bin/python3
+"""squeal against CalculiX 2.20 on the real modes of the passenger-car brake
+(scripts/make_brake.py), same machine, one run after the other.
+
+usage: /usr/bin/python3 benchmarks/real_brake/run_modes.py [SQUEAL] [WORKDIR]
+
+The model, the same in both codes: the brake's frictionless assembly with
+each pad face tied to its disc face (squeal: Ties, dual mortar; CalculiX:
+*TIE), every body and material of brake_scene.prm, the disc held at its hub
+face and the bracket at its mounts, no springs, no damping.
+- CalculiX: calculix_deck.py's C3D20R decks of the generator's meshes at
+  element sizes 10, 7.5 and 5.5 mm, `ccx -i` with OMP_NUM_THREADS=2,
+  OPENBLAS_NUM_THREADS=1, *FREQUENCY (SPOOLES + ARPACK) up to 16 kHz;
+- squeal: the same meshes (brake.msh) at degree 2 and 3, the reduced solver
+  with the undamped symmetric modes up to 16 kHz as its basis (without
+  friction and damping its eigenvalues are those modes), 1 MPI rank.
+The reference is squeal at degree 3 on the 7.5 mm mesh (the finest run);
+error = the largest relative difference of the k-th frequency below 16 kHz
+from the k-th of the reference. Wall time and peak memory (maximum resident
+set size, /usr/bin/time -v) of each whole run.
+
+A finished run is kept in WORKDIR (its log, time and memory in a .json), so
+an interrupted benchmark resumes. Prints the table and writes
+WORKDIR/modes.csv.
+"""
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+here = os.path.dirname(os.path.abspath(__file__))
+root = os.path.normpath(os.path.join(here, "..", ".."))
+sys.path.insert(0, here)
+import calculix_deck  # noqa: E402
+
+F_MAX = 16000.0
+SQUEAL_RUNS = [(10.0, 2), (7.5, 2), (10.0, 3), (7.5, 3)]
+CALCULIX_RUNS = [10.0, 7.5, 5.5]
+
+
+def timed(command, cwd, env=None):
+    """Runs COMMAND under /usr/bin/time -v; (CompletedProcess, wall s,
+    peak memory MB)."""
+    start = time.monotonic()
+    r = subprocess.run(["/usr/bin/time", "-v"] + command, cwd=cwd, env=env,
+                       capture_output=True, text=True)
+    seconds = time.monotonic() - start
+    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", r.stderr)
+    return r, seconds, int(m.group(1)) / 1024 if m else float("nan")
+
+
+def cached(record, run):
+    """The json RECORD if present, else RUN() saved into it."""
+    if os.path.exists(record):
+        with open(record) as f:
+            return json.load(f)
+    result = run()
+    with open(record + ".tmp", "w") as f:
+        json.dump(result, f)
+    os.replace(record + ".tmp", record)
+    return result
+
+
+def mesh_dir(work, h):
+    out = os.path.join(work, f"mesh_{h:g}")
+    if not os.path.isfile(os.path.join(out, "brake_scene.prm")):
+        subprocess.run([sys.executable,
+                        os.path.join(root, "scripts", "make_brake.py"),
+                        "--element-size", str(h), "--out", out], check=True,
+                       capture_output=True)
+    return out
+
+
+def squeal_run(squeal, work, h, degree):
+    name = f"squeal_h{h:g}_q{degree}"
+    out = os.path.join(work, name)
+
+    def run():
+        mesh = mesh_dir(work, h)
+        with open(out + ".prm", "w") as f:
+            f.write(f"""INCLUDE {mesh}/brake_scene.prm
+subsection Scene
+  set Analysis = cea
+  subsection Mesh file
+    set Contact pairs =
+    set Springs =
+    set Ties = inner tie: slave=inner pad face, master=disc inboard face; \\
+               outer tie: slave=outer pad face, master=disc outboard face
+  end
+end
+subsection Mesh
+  set Finite element degree = {degree}
+end
+subsection Damping
+  set Alpha = 0
+  set Beta = 0
+end
+subsection Eigensolver
+  set Method = reduced
+  set Minimum frequency = 1
+  set Maximum frequency = {F_MAX:g}
+  set Reduced band factor = 1
+  set Reduced enrichment = false
+  set Check points = 0
+end
+subsection Sweep
+  set First parameter = damping.alpha
+  set First values = 0
+  set Second parameter = damping.beta
+  set Second values = 0
+end
+subsection Output
+  set Directory = {out}
+  set Overwrite = true
+  set Mode shapes = none
+end
+""")
+        env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+        r, seconds, mb = timed([squeal, out + ".prm"], work, env)
+        if r.returncode != 0:
+            sys.exit(f"{name}: squeal failed\n{r.stdout[-3000:]}\n{r.stderr}")
+        dofs = int(re.search(r"(\d+) DoFs", r.stdout).group(1))
+        with open(os.path.join(out, "eigenvalues.csv")) as f:
+            freqs = sorted(float(row["freq_Hz"]) for row in csv.DictReader(f))
+        return dict(code="squeal", mesh_mm=h, element=f"degree {degree}",
+                    dofs=dofs, seconds=seconds, memory_MB=mb, freqs=freqs)
+    return cached(out + ".json", run)
+
+
+def calculix_run(work, h):
+    name = f"ccx_h{h:g}"
+    inp = os.path.join(work, name + ".inp")
+
+    def run():
+        text, dofs = calculix_deck.deck(h, F_MAX, 300)
+        with open(inp, "w") as f:
+            f.write(text)
+        env = dict(os.environ, OMP_NUM_THREADS="2", OPENBLAS_NUM_THREADS="1")
+        r, seconds, mb = timed(["ccx", "-i", name], work, env)
+        if r.returncode != 0 or "Job finished" not in r.stdout:
+            sys.exit(f"{inp}: ccx failed\n{r.stdout[-3000:]}\n{r.stderr}")
+        freqs = []
+        with open(os.path.join(work, name + ".dat")) as f:
+            table = f.read().split("E I G E N V A L U E   O U T P U T", 1)[1]
+        for line in table.split("P A R T I C I P A T I O N", 1)[0] \
+                .splitlines():
+            cols = line.split()
+            if len(cols) == 5 and cols[0].isdigit():
+                freqs.append(float(cols[3]))
+        return dict(code="CalculiX", mesh_mm=h, element="C3D20R", dofs=dofs,
+                    seconds=seconds, memory_MB=mb,
+                    freqs=sorted(v for v in freqs if v <= F_MAX))
+    return cached(os.path.join(work, name + ".json"), run)
+
+
+def main():
+    squeal = sys.argv[1] if len(sys.argv) > 1 else \
+        os.path.join(root, "build", "squeal")
+    work = os.path.abspath(sys.argv[2] if len(sys.argv) > 2 else
+                           os.path.join(root, "output", "real_brake_modes"))
+    os.makedirs(work, exist_ok=True)
+    if subprocess.run(["which", "ccx"], capture_output=True).returncode:
+        sys.exit("run_modes.py needs CalculiX: apt-get install calculix-ccx")
+    runs = [squeal_run(squeal, work, h, q) for h, q in SQUEAL_RUNS]
+    runs += [calculix_run(work, h) for h in CALCULIX_RUNS]
+    reference = runs[SQUEAL_RUNS.index((7.5, 3))]["freqs"]
+    band = [f for f in reference if f <= F_MAX]
+    print(f"reference: squeal degree 3, 7.5 mm mesh: {len(band)} modes below "
+          f"{F_MAX:g} Hz ({band[0]:.1f} ... {band[-1]:.1f} Hz)")
+    print("| code | mesh [mm] | element | DoFs | modes below 16 kHz | "
+          "wall time [s] | peak memory [MB] | largest error | median error |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    rows = []
+    for r in runs:
+        f = r["freqs"]
+        n = min(len(f), len(band))
+        errors = sorted(abs(f[k] - band[k]) / band[k] for k in range(n))
+        largest = errors[-1] if errors else float("nan")
+        median = errors[len(errors) // 2] if errors else float("nan")
+        count = sum(1 for v in f if v <= F_MAX)
+        print(f"| {r['code']} | {r['mesh_mm']:g} | {r['element']} | "
+              f"{r['dofs']} | {count} | {r['seconds']:.1f} | "
+              f"{r['memory_MB']:.0f} | {100 * largest:.3f} % | "
+              f"{100 * median:.3f} % |")
+        rows.append(dict(code=r["code"], mesh_mm=r["mesh_mm"],
+                         element=r["element"], dofs=r["dofs"], modes=count,
+                         seconds=r["seconds"], memory_MB=r["memory_MB"],
+                         largest_error=largest, median_error=median))
+    with open(os.path.join(work, "modes.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+if __name__ == "__main__":
+    main()
