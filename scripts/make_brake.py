@@ -35,8 +35,8 @@ and inner backplate, fingers and outer backplate).
 
 Dimensions, materials and stiffnesses are the constants below, each with
 its source. Everything is structured in (r, theta, z), so the element size
-sets the DoF count: at degree 2, coarse ~ 90 000 DoFs,
-default ~ 200 000, fine ~ 1 000 000 (squeal prints the count).
+sets the DoF count: at degree 2, coarse 91 374 DoFs, default 199 584,
+fine 1 176 456.
 """
 import argparse
 import math
