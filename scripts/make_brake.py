@@ -267,21 +267,16 @@ def write_msh(m, path):
         gmsh.model.mesh.addNodes(
             3, holder, list(range(1, len(m.coords) + 1)),
             [c for p in m.coords for c in p])
-        tag = 1
-        for body, cells in m.cells.items():
-            e = gmsh.model.addDiscreteEntity(3)
+        # (dimension, Gmsh element type, name, node lists): hexahedra are
+        # type 5, quadrilaterals type 3
+        groups = [(3, 5, b, c) for b, c in m.cells.items()] + \
+            [(2, 3, f, q) for f, q in m.faces.items()]
+        for tag, (dim, kind, name, items) in enumerate(groups, start=1):
+            e = gmsh.model.addDiscreteEntity(dim)
             gmsh.model.mesh.addElementsByType(
-                e, 5, [], [n + 1 for c in cells for n in c])
-            gmsh.model.addPhysicalGroup(3, [e], tag)
-            gmsh.model.setPhysicalName(3, tag, body)
-            tag += 1
-        for name, quads in m.faces.items():
-            e = gmsh.model.addDiscreteEntity(2)
-            gmsh.model.mesh.addElementsByType(
-                e, 3, [], [n + 1 for q in quads for n in q])
-            gmsh.model.addPhysicalGroup(2, [e], tag)
-            gmsh.model.setPhysicalName(2, tag, name)
-            tag += 1
+                e, kind, [], [n + 1 for item in items for n in item])
+            gmsh.model.addPhysicalGroup(dim, [e], tag)
+            gmsh.model.setPhysicalName(dim, tag, name)
         gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
         gmsh.option.setNumber("Mesh.SaveAll", 0)
         gmsh.write(path)
