@@ -88,7 +88,13 @@ namespace squeal
       s.friction_coefficient =
         model.scene->common_friction_coefficient(model.scene->nominal_point());
       s.sliding_direction = contact::common_sliding(*model.scene);
-      s.master_slip       = prm.preload.disc_slip * s.sliding_direction;
+      // The penalty law: each pair's k_n, the CEA interface's stiffness.
+      if (prm.preload.normal_law == "penalty")
+        s.normal_stiffness =
+          contact::pair_normal_stiffness(*model.scene,
+                                         model.scene->nominal_point(),
+                                         mortar);
+      s.master_slip = prm.preload.disc_slip * s.sliding_direction;
       std::ostream *log =
         Utilities::MPI::this_mpi_process(comm) == 0 ? &std::cout : nullptr;
       // The normal force in Load steps increments; each step starts from the
@@ -155,6 +161,12 @@ namespace squeal
       double max_p = 0.;
       for (unsigned int j = 0; j < mortar.n_slave(); ++j)
         max_p = std::max(max_p, state.nodal_pressure[j]);
+      pcout << "Normal contact law: " << prm.preload.normal_law
+            << (prm.preload.normal_law == "penalty" ?
+                  " (pressure = k_n x penetration, largest penetration " +
+                    std::to_string(largest_penetration()) + " m)" :
+                  std::string(" (no penetration)"))
+            << std::endl;
       pcout << "Preload converged: normal force " << state.normal_force
             << " N, friction force " << state.tangential_force
             << " N (the springs hold back " << spring_reaction
@@ -247,9 +259,21 @@ namespace squeal
             << "\nspring_force_N " << spring_reaction << "\ncontact_area_m2 "
             << state.contact_area << "\npad_face_area_m2 " << mortar.slave_area
             << "\nactive_set_iterations " << state.history.size()
-            << "\nload_steps " << steps.size() << "\n";
+            << "\nload_steps " << steps.size() << "\nnormal_contact_law "
+            << prm.preload.normal_law << "\nlargest_penetration_m "
+            << largest_penetration() << "\n";
       }
       write_displacement();
+    }
+
+    double
+    PreloadAnalysis::largest_penetration() const
+    {
+      double d = 0.;
+      for (unsigned int j = 0; j < state.gap.size(); ++j)
+        if (state.status[j] != 0)
+          d = std::max(d, -state.gap[j]);
+      return d;
     }
 
     void

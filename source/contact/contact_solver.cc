@@ -291,6 +291,9 @@ namespace squeal
         std::vector<std::array<double, 2>>       slide;
         std::vector<double>                      c;
         std::vector<std::array<double, 2>>       imposed;
+        // per node: the compliance e_j = D_jj / k_j [m^5/N] of a compliant
+        // normal law (0: hard), g_j + e_j z_j = 0 on the active set
+        std::vector<double> compliance;
 
         // Sets: active (in contact), stick (Coulomb only); per slip node the
         // direction n of its trial traction and a = mu z / |trial| at the
@@ -324,12 +327,32 @@ namespace squeal
         , slide(n_s)
         , c(n_s)
         , imposed(n_s, {{0., 0.}})
+        , compliance(n_s, 0.)
         , active(n_s, 0)
         , stick(n_s, 0)
         , curl(n_s, 0.)
       {
         if (settings.previous_displacement.size() == n)
           u_prev = settings.previous_displacement;
+        if (!settings.normal_stiffness.empty())
+          {
+            if (settings.normal_stiffness.size() != n_s)
+              throw std::runtime_error(
+                "contact: the normal contact law has " +
+                std::to_string(settings.normal_stiffness.size()) +
+                " stiffnesses for " + std::to_string(n_s) +
+                " slave nodes (give one per node, or none for hard contact)");
+            for (unsigned int j = 0; j < n_s; ++j)
+              {
+                const double k = settings.normal_stiffness[j];
+                if (!std::isfinite(k) || k < 0.)
+                  throw std::runtime_error(
+                    "contact: the normal stiffness of slave node " +
+                    std::to_string(j) + " is " + std::to_string(k) +
+                    " N/m^3; it must be finite and >= 0 (0: hard contact)");
+                compliance[j] = k > 0. ? op.D[j] / k : 0.;
+              }
+          }
         std::vector<types::global_dof_index> slave_dofs;
         for (unsigned int j = 0; j < n_s; ++j)
           for (unsigned int d = 0; d < 3; ++d)
@@ -444,7 +467,10 @@ namespace squeal
         for (unsigned int j : A)
           {
             const auto b = row(op, j, op.normals[j]);
-            constraint_row(column[j], b, -op.gap0[j]);
+            // hard: g_j = 0; compliant: g_j + e_j z_j = 0
+            constraint_row(column[j], b, -op.gap0[j], 1., compliance[j] == 0.);
+            if (compliance[j] > 0.)
+              entries.emplace_back(column[j], column[j], compliance[j]);
             // normal force B^T z
             force_column(column[j], b, 1.);
             if (model == FrictionModel::steady_sliding)
@@ -555,7 +581,8 @@ namespace squeal
             if (!std::isfinite(op.gap0[j]))
               continue;
             next[j] =
-              s.pressure[j] - c[j] * g[j] > (active[j] ? -1e-9 * z_scale : 0.);
+              s.pressure[j] - c[j] * (g[j] + compliance[j] * s.pressure[j]) >
+              (active[j] ? -1e-9 * z_scale : 0.);
             info.changed += next[j] != active[j];
             info.active += next[j];
             z_max = std::max(z_max, s.pressure[j]);

@@ -507,7 +507,7 @@ namespace squeal
       all.D.reinit(n_s);
       all.gap0.reinit(n_s);
       std::vector<Eigen::Triplet<double>> mass;
-      unsigned int                        s0 = 0;
+      unsigned int                        s0 = 0, pair_index = 0;
       for (const auto &op : pairs)
         {
           const unsigned int m0 = all.master_points.size();
@@ -515,6 +515,7 @@ namespace squeal
             {
               all.slave_points.push_back(op.slave_points[j]);
               all.slave_dofs.push_back(op.slave_dofs[j]);
+              all.slave_pair.push_back(pair_index);
               all.normals.push_back(op.normals[j]);
               all.tangents1.push_back(op.tangents1[j]);
               all.tangents2.push_back(op.tangents2[j]);
@@ -542,6 +543,7 @@ namespace squeal
           all.covered_area += op.covered_area;
           all.slave_area += op.slave_area;
           s0 += op.n_slave();
+          ++pair_index;
         }
       all.slave_mass.resize(n_s, n_s);
       all.slave_mass.setFromTriplets(mass.begin(), mass.end());

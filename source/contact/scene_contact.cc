@@ -77,6 +77,20 @@ namespace squeal
       return merge_mortar_operators(ops);
     }
 
+    std::vector<double>
+    pair_normal_stiffness(const scene::Scene            &scene,
+                          const parameters::ScalarPoint &point,
+                          const MortarOperators         &op)
+    {
+      std::vector<double> k(op.n_slave());
+      for (unsigned int j = 0; j < op.n_slave(); ++j)
+        k[j] = point.get(
+          scene.contact_pairs.at(op.slave_pair.empty() ? 0 : op.slave_pair[j])
+            .name +
+          ".k_n");
+      return k;
+    }
+
     std::pair<types::global_dof_index, Point<3>>
     contact_system(const physics::StructuralModel &model,
                    SparsityPattern                &pattern,

@@ -45,6 +45,19 @@ namespace squeal
                         "steps increments, the disc at rest or turning by "
                         "Disc slip per step; frictionless. mu is "
                         "Interface/Friction coefficient.");
+      prm.declare_entry("Normal contact law",
+                        normal_law,
+                        Patterns::Selection("penalty|hard"),
+                        "penalty: the contact pressure is k_n times the "
+                        "penetration, k_n each contact pair's normal "
+                        "stiffness [N/m^3] (its k_n=, or Interface/Normal "
+                        "stiffness): the law whose tangent the CEA's "
+                        "interface is, so the preload and the CEA about it "
+                        "agree (the CEA keeps the interface where this law "
+                        "keeps the pad in contact); hard: no penetration "
+                        "(Lagrange multipliers), for Scene/Analysis = "
+                        "preload only. For the hard limit in a preloaded "
+                        "CEA set a large k_n (1e14 N/m^3 for steel).");
       prm.declare_entry("Search distance",
                         str(search_distance),
                         Patterns::Double(1e-9),
@@ -86,6 +99,7 @@ namespace squeal
       prm.enter_subsection("Preload");
       normal_force         = prm.get_double("Normal force");
       friction             = prm.get("Friction");
+      normal_law           = prm.get("Normal contact law");
       search_distance      = prm.get_double("Search distance");
       load_steps           = prm.get_integer("Load steps");
       disc_slip            = prm.get_double("Disc slip per step");

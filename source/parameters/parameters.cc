@@ -143,6 +143,14 @@ namespace squeal
               scene.analysis +
               "); without a preload set it to 0 and refine the disc track "
               "by geometry with Mesh/Disc refinements under pad");
+      check(preload.normal_law == "penalty" ||
+              scene.analysis != "preloaded cea",
+            "Preload/Normal contact law = hard does not go with "
+            "Scene/Analysis = preloaded cea: the CEA's interface is the "
+            "tangent of the penalty law p = k_n x penetration, so the "
+            "preload about which it is linearised must use that law too; "
+            "set it to penalty (for the hard limit, a large Interface/Normal "
+            "stiffness or k_n=)");
       check(scene.analysis != "model updating" ||
               (!updating.parameters.empty() && !updating.targets.empty()),
             "Scene/Analysis = model updating needs Model updating/Parameters "

@@ -80,8 +80,11 @@ end
 summary = {}
 with open(os.path.join(out, "preload_summary.txt")) as f:
     for row in f:
-        if len(row.split()) == 2:
-            summary[row.split()[0]] = float(row.split()[1])
+        key, _, value = row.partition(" ")
+        try:
+            summary[key] = float(value)
+        except ValueError:  # a word: normal_contact_law
+            summary[key] = value.strip()
 fn = summary.get("normal_force_N", 0.)
 ft = summary.get("friction_force_N", 0.)
 check("both pads pressed by the caliper's force loop",

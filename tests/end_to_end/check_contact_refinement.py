@@ -4,14 +4,18 @@
 usage: check_contact_refinement.py SQUEAL PRM WORKDIR
 
 PRM is the coarse preloaded TriboBrake (tests/preload/coarse.prm: degree 1,
-pad 4 x 4 cells, 100 N with steady sliding at mu = 0.5, whose pressure
-peaks at the pad's leading edge and whose trailing part separates). The
+pad 4 x 4 cells, 100 N with steady sliding at mu = 0.5), here with the
+hard-contact limit of the interface stiffness (k_n = 1e14 N/m^3 in the
+preload's penalty law and in the CEA), whose pressure peaks at the pad's
+leading edge and whose trailing part separates. The
 CEA about it at one point (E_pad = 25 GPa, mu = 0.5, full solver) runs
 with 0 and 2 contact refinement cycles (fraction 0.25). Checks:
 - the indicator, recomputed here from the preload's contact.csv: for every
   pad cell of the first cycle (the unrefined 4 x 4 grid, its face nodes at
   its corners) the pressure variation max - min over its face nodes equals
-  contact_refinement.csv's to 1e-6 of the largest;
+  contact_refinement.csv's to 1e-5 of the largest (the code interpolates
+  the nodal field at the cells' vertices, which lie within about 1e-9 m of
+  the pad nodes where the pressure gradient is about 2e9 Pa/m: a few Pa);
 - the marking: per cycle ceil(0.25 x contact cells) or more (ties) are
   refined, each with a variation at least that of every cell left;
 - where: the first cycle refines the pad cells at the leading edge (the
@@ -49,6 +53,9 @@ end
 subsection Mesh
   set Contact refinements = {cycles}
   set Contact refinement fraction = {FRACTION}
+end
+subsection Interface
+  set Normal stiffness = 1e14
 end
 """, mpi)
 
@@ -94,7 +101,7 @@ for r in first_pad:
     ps = [pressure[c] for c in corners]
     worst = max(worst, abs(max(ps) - min(ps) - float(r["pressure_variation_Pa"])))
 check("the pad cells' indicator is the pressure variation over their face nodes",
-      len(first_pad) == (len(xs) - 1) * (len(ys) - 1) and worst <= 1e-6 * largest,
+      len(first_pad) == (len(xs) - 1) * (len(ys) - 1) and worst <= 1e-5 * largest,
       f"{len(first_pad)} pad cells, largest difference {worst:.3g} Pa of {largest:.3g}")
 
 # the marking

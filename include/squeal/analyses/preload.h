@@ -95,6 +95,10 @@ namespace squeal
       solve();
       void
       output_results() const;
+      /** The largest -g_j / D_jj over the nodes in contact [m]: the
+       *  penetration of the penalty law (0 to rounding for the hard one). */
+      double
+      largest_penetration() const;
       /** displacement.vtu, written by all ranks together. */
       void
       write_displacement() const;

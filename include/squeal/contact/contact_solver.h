@@ -32,6 +32,15 @@
  *   iteration converges super-linearly once the sets stop changing; it
  *   stops when no node changes set and the slip residual
  *   |t_j - mu z_j n_j| is below 1e-10 mu max z.
+ * A compliant normal law (ContactSettings::normal_stiffness k_j > 0,
+ * pressure k_j times the penetration -g_j / D_jj) is the same iteration on
+ * the perturbed constraint g_j + (D_jj / k_j) z_j = 0 of the active nodes
+ * (a perturbed Lagrangian: the compliance D_jj / k_j [m^5/N] on the
+ * multiplier's diagonal) and the complementarity function
+ *   C_j(u, z) = z_j - max(0, z_j - c_j (g_j + (D_jj / k_j) z_j)),
+ * so that an active node's pressure is exactly k_j times its penetration,
+ * and k_j -> infinity gives the hard law back (first order in 1/k_j).
+ *
  * The augmented system is solved by UMFPACK (serial) or MUMPS (MPI: each
  * rank its rows of the structure, the contact rows replicated; the active
  * sets are updated identically on every rank from the gathered solution).
@@ -115,6 +124,12 @@ namespace squeal
       /// n_s x 2, with initial_status: the tangential traction of the
       /// previous load step; a slipping node's first slip direction
       std::vector<std::array<double, 2>> initial_traction;
+      /// The normal contact law, per slave node: k_j [N/m^3] > 0 makes it
+      /// compliant (penalty), p_j = k_j max(0, -g_j / D_jj), the law of the
+      /// CEA's linear interface (thesis eq. 3-1) with the same k; 0 makes it
+      /// hard (no penetration, p_j a Lagrange multiplier). Empty: hard
+      /// everywhere; otherwise n_s entries, each finite and >= 0.
+      std::vector<double> normal_stiffness;
     };
 
     /** One active-set iteration, for the convergence report. */
@@ -162,7 +177,9 @@ namespace squeal
      * @param log if given, one line per iteration
      * @throws std::runtime_error naming the iteration count and the
      * active-set sizes if the active set does not settle within
-     * `max_iterations`, or if the direct solver fails (a body not held).
+     * `max_iterations`, if the direct solver fails (a body not held), if
+     * mu < 0, or if `settings.normal_stiffness` is neither empty nor n_s
+     * finite values >= 0.
      */
     ContactSolution
     solve_static_contact(const ContactStiffness                  &K,

@@ -75,6 +75,9 @@ namespace squeal
       /// contact pairs merged into these operators (merge_mortar_operators);
       /// slave_id and master_id are the first pair's
       unsigned int n_pairs = 1;
+      /// n_s: the contact pair (index in the merged list) of each slave
+      /// node; empty for the operators of one pair
+      std::vector<unsigned int> slave_pair;
 
       /** Number of slave nodes. */
       unsigned int

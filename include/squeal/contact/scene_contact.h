@@ -62,6 +62,18 @@ namespace squeal
                  dealii::ConditionalOStream     &pcout);
 
     /**
+     * The penalty law's normal stiffness of every slave node of @p op
+     * (scene_mortar()'s merged operators): its contact pair's `<pair>.k_n`
+     * at @p point [N/m^3], for ContactSettings::normal_stiffness.
+     * @return n_s values
+     * @throws std::runtime_error as ScalarPoint::get().
+     */
+    std::vector<double>
+    pair_normal_stiffness(const scene::Scene            &scene,
+                          const parameters::ScalarPoint &point,
+                          const MortarOperators         &op);
+
+    /**
      * The scene's structural stiffness K_s at the file's nominal point
      * (bodies and springs; no linear interface) as a serial matrix [N/m] on
      * a new @p pattern, and its constraints: the model's (the scene's holds,

@@ -429,8 +429,12 @@ namespace squeal
     {
       double      normal_force = 100.;         ///< N, on the support's top
       std::string friction = "steady sliding"; ///< or `coulomb`, `frictionless`
-      double      search_distance = 1e-3;      ///< m, contact search reach
-      unsigned int load_steps     = 1;         ///< increments of the load
+      /// `penalty`: p = k_n x penetration with each contact pair's k_n
+      /// [N/m^3], the law the CEA's interface linearises (thesis eq. 3-1);
+      /// `hard`: no penetration (Lagrange multipliers), the preload alone
+      std::string  normal_law      = "penalty";
+      double       search_distance = 1e-3; ///< m, contact search reach
+      unsigned int load_steps      = 1;    ///< increments of the load
       /// m: `coulomb` only, how far the disc turns under the pad (along
       /// Interface/Sliding direction) during each load step; 0: at rest
       double disc_slip = 0.;
