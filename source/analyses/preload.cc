@@ -161,12 +161,13 @@ namespace squeal
       double max_p = 0.;
       for (unsigned int j = 0; j < mortar.n_slave(); ++j)
         max_p = std::max(max_p, state.nodal_pressure[j]);
-      pcout << "Normal contact law: " << prm.preload.normal_law
-            << (prm.preload.normal_law == "penalty" ?
-                  " (pressure = k_n x penetration, largest penetration " +
-                    std::to_string(largest_penetration()) + " m)" :
-                  std::string(" (no penetration)"))
-            << std::endl;
+      pcout << "Normal contact law: " << prm.preload.normal_law;
+      if (prm.preload.normal_law == "penalty")
+        pcout << " (pressure = k_n x penetration, largest penetration "
+              << std::setprecision(3) << largest_penetration() << " m)";
+      else
+        pcout << " (no penetration)";
+      pcout << std::setprecision(6) << std::endl;
       pcout << "Preload converged: normal force " << state.normal_force
             << " N, friction force " << state.tangential_force
             << " N (the springs hold back " << spring_reaction
