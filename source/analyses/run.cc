@@ -328,13 +328,35 @@ namespace squeal
                                            std::string(e.what()));
                 }
             };
+            // a fit stays within its bounds, so bounds inside the scene's
+            // ranges keep every evaluated model physical
             for (const auto &q :
                  parse_updating_parameters(prm.updating.parameters))
-              known(q.name, "Parameters");
+              {
+                known(q.name, "Parameters");
+                scene::check_parameter_value(
+                  scene,
+                  q.name,
+                  q.lower,
+                  "Model updating/Parameters, lower bound of " + q.name);
+                scene::check_parameter_value(
+                  scene,
+                  q.name,
+                  q.upper,
+                  "Model updating/Parameters, upper bound of " + q.name);
+              }
             for (const auto &c :
                  parse_configurations(prm.updating.configurations))
               for (const auto &v : c.values)
-                known(v.first, "Configurations");
+                {
+                  known(v.first, "Configurations");
+                  scene::check_parameter_value(scene,
+                                               v.first,
+                                               v.second,
+                                               "Model updating/Configurations, "
+                                               "configuration '" +
+                                                 c.name + "'");
+                }
           }
         else if (analysis != "preload" &&
                  (analysis != "braking" || prm.transient.grid))

@@ -292,6 +292,22 @@ namespace squeal
           }
     }
 
+    void
+    check_parameter_value(const Scene       &scene,
+                          const std::string &name,
+                          const double       value,
+                          const std::string &entry)
+    {
+      const NamedParameter info = scene.parameter(name);
+      if (const std::string range = outside(info, value); !range.empty())
+        {
+          std::ostringstream m;
+          m << entry << ": " << value << " is out of range for " << info.name
+            << " " << range;
+          throw std::runtime_error(m.str());
+        }
+    }
+
     std::vector<parameters::ScalarPoint>
     sweep_points(const Scene &scene, const parameters::Sweep &sweep)
     {

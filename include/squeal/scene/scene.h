@@ -428,6 +428,22 @@ namespace squeal
     check_parameter_ranges(const Scene &scene);
 
     /**
+     * Checks one value @p value [the parameter's unit] of the named
+     * parameter @p name against its physical range (as
+     * check_parameter_ranges()), for values an input gives outside the
+     * scene: model updating's bounds and configurations.
+     * @param entry the input that gave it, e.g. "Model updating/Parameters,
+     *   upper bound of support.rho"; the error starts with it.
+     * @throws std::runtime_error naming @p entry, the value and the range,
+     *   or (from Scene::parameter()) an unknown name.
+     */
+    void
+    check_parameter_value(const Scene       &scene,
+                          const std::string &name,
+                          double             value,
+                          const std::string &entry);
+
+    /**
      * Every point of @p sweep on @p scene: the nominal point with the first
      * parameter set to each of its values, for each value of the second
      * (second outermost).
