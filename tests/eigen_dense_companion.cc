@@ -4,8 +4,9 @@
 // non-proportional damping (Rayleigh on the bodies only, the interface
 // stiffness undamped), its M, C, K exported by io::export_matrices in the
 // MatrixMarket format, read back by io::read_matrix_market, and every
-// eigenvalue of the scaled companion pencil computed by LAPACK dggev (QZ,
-// no projection, no shift, no iteration of squeal's). Checks:
+// eigenvalue of the scaled companion matrix of the Cholesky-congruent
+// problem computed by LAPACK dgeev (tests/dense_qep.h: no projection, no
+// shift, no iteration of squeal's). Checks:
 // - the export round trip: the read K has the model's norm (to 1e-13);
 // - the same number of eigenvalues in the band, matched one to one;
 // - frequencies within 1e-8 (relative) and real parts within 1e-6 |lambda|;
@@ -16,29 +17,11 @@
 #include <squeal/io/matrix_export.h>
 #include <squeal/physics/structural_model.h>
 
+#include "dense_qep.h"
 #include "test_tools.h"
 
 #include <algorithm>
 #include <filesystem>
-
-extern "C" void
-dggev_(const char *jobvl,
-       const char *jobvr,
-       const int  *n,
-       double     *a,
-       const int  *lda,
-       double     *b,
-       const int  *ldb,
-       double     *alphar,
-       double     *alphai,
-       double     *beta,
-       double     *vl,
-       const int  *ldvl,
-       double     *vr,
-       const int  *ldvr,
-       double     *work,
-       const int  *lwork,
-       int        *info);
 
 using namespace dealii;
 using namespace squeal;
@@ -54,61 +37,6 @@ namespace
     return A;
   }
 
-  // Every eigenvalue of (lambda^2 M + lambda C + K) x = 0 from the
-  // companion pencil [0 I; -K -C] - mu [I 0; 0 M], scaled as by
-  // H.-Y. Fan, W.-W. Lin, P. Van Dooren, SIAM J. Matrix Anal. Appl. 26
-  // (2004) 252-256: lambda = gamma mu, gamma = sqrt(|K| / |M|),
-  // delta = 2 / (|K| + gamma |C|).
-  std::vector<std::complex<double>>
-  companion_eigenvalues(const Eigen::MatrixXd &M,
-                        const Eigen::MatrixXd &C,
-                        const Eigen::MatrixXd &K)
-  {
-    const int    n = M.rows(), n2 = 2 * n;
-    const double gamma = std::sqrt(K.norm() / M.norm()),
-                 delta = 2. / (K.norm() + gamma * C.norm());
-    Eigen::MatrixXd A  = Eigen::MatrixXd::Zero(n2, n2),
-                    B  = Eigen::MatrixXd::Zero(n2, n2);
-    A.topRightCorner(n, n).setIdentity();
-    A.bottomLeftCorner(n, n)  = -delta * K;
-    A.bottomRightCorner(n, n) = -gamma * delta * C;
-    B.topLeftCorner(n, n).setIdentity();
-    B.bottomRightCorner(n, n) = gamma * gamma * delta * M;
-    std::vector<double> ar(n2), ai(n2), be(n2), work(1);
-    int                 lwork = -1, info = 0, one = 1;
-    double              dummy = 0;
-    // first the workspace query (lwork = -1), then the solve
-    const auto qz = [&]() {
-      dggev_("N",
-             "N",
-             &n2,
-             A.data(),
-             &n2,
-             B.data(),
-             &n2,
-             ar.data(),
-             ai.data(),
-             be.data(),
-             &dummy,
-             &one,
-             &dummy,
-             &one,
-             work.data(),
-             &lwork,
-             &info);
-    };
-    qz();
-    lwork = int(work[0]);
-    work.resize(lwork);
-    qz();
-    if (info != 0)
-      throw std::runtime_error("dggev failed: info = " + std::to_string(info));
-    std::vector<std::complex<double>> lambda;
-    for (int k = 0; k < n2; ++k)
-      if (be[k] != 0.)
-        lambda.emplace_back(gamma * ar[k] / be[k], gamma * ai[k] / be[k]);
-    return lambda;
-  }
 } // namespace
 
 int
@@ -159,7 +87,7 @@ main(int argc, char **argv)
                         << std::endl;
 
   std::vector<std::complex<double>> dense_band;
-  for (const auto &l : companion_eigenvalues(M, C, K))
+  for (const auto &l : test_tools::dense_qep_eigenvalues_cholesky(M, C, K))
     if (l.imag() > 0 && l.imag() / (2 * M_PI) >= f_min &&
         l.imag() / (2 * M_PI) <= f_max)
       dense_band.push_back(l);

@@ -170,6 +170,14 @@ namespace squeal
       const auto        &es             = prm.eigensolver;
       eigen::BandOptions band           = band_options();
       const bool         reduced_method = es.method == "reduced";
+      if (const auto &modal = model->parts().modal; modal.active())
+        {
+          pcout << "Modal damping of the frictionless modes up to "
+                << modal.cutoff << " Hz (besides the Rayleigh damping):";
+          for (const auto &[f, zeta] : modal.ratios)
+            pcout << " " << 100. * zeta << " % at " << f << " Hz;";
+          pcout << " linear between, constant beyond" << std::endl;
+        }
       if (reduced_method)
         {
           TimerOutput::Scope t(timer, "reduced basis");

@@ -597,6 +597,7 @@ namespace squeal
       updating::Options options;
       options.measurement_error = u.measurement_error;
       options.max_iterations    = u.max_iterations;
+      options.tolerance         = u.tolerance;
       options.mac_threshold     = u.mac_threshold;
       options.frequency_window  = u.frequency_window;
       std::vector<double> start;

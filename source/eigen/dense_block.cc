@@ -168,6 +168,41 @@ namespace squeal
         return T;
       }
 
+      SubspaceModalDamping
+      subspace_modal_damping(const Eigen::MatrixXd                    &Mr,
+                             const Eigen::MatrixXd                    &Ksr,
+                             const physics::MatrixParts::ModalDamping &modal)
+      {
+        const int            r = Mr.rows();
+        SubspaceModalDamping result{Eigen::MatrixXd(r, 0),
+                                    Eigen::VectorXd(0),
+                                    Eigen::MatrixXd::Zero(r, r)};
+        if (!modal.active() || r == 0)
+          return result;
+        const Eigen::MatrixXd sym_M = (Mr + Mr.transpose()) / 2,
+                              sym_K = (Ksr + Ksr.transpose()) / 2;
+        const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
+          sym_K, sym_M);
+        if (es.info() != Eigen::Success)
+          throw std::runtime_error(
+            "modal damping: the projected mass matrix of the subspace is "
+            "not positive definite");
+        std::vector<int> keep;
+        for (int i = 0; i < r; ++i)
+          if (modal.coefficient(es.eigenvalues()[i]) != 0.)
+            keep.push_back(i);
+        result.Psi.resize(r, keep.size());
+        result.d.resize(keep.size());
+        for (unsigned int j = 0; j < keep.size(); ++j)
+          {
+            result.Psi.col(j) = es.eigenvectors().col(keep[j]);
+            result.d[j]       = modal.coefficient(es.eigenvalues()[keep[j]]);
+          }
+        result.B =
+          result.Psi * result.d.asDiagonal() * result.Psi.transpose() * sym_M;
+        return result;
+      }
+
       Eigen::VectorXd
       local_part(const PETScVector &v, const dealii::IndexSet &owned)
       {

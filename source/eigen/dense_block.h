@@ -9,6 +9,7 @@
 #include <deal.II/base/index_set.h>
 
 #include <squeal/eigen/qep_solver.h>
+#include <squeal/physics/structural_model.h>
 
 #include <Eigen/Dense>
 
@@ -113,6 +114,32 @@ namespace squeal
                            const double           f_min,
                            const double           f_max,
                            const double           shift = 0.);
+
+      /**
+       * Modal damping on a subspace V (physics::MatrixParts::ModalDamping):
+       * Psi (r x m) are the Ritz modes of (Ksr, Mr) = (V^T K_s V, V^T M V)
+       * (r x r, K_s the stiffness without friction), Mr-normalised, whose
+       * coefficient d_i = 2 zeta(f_i) omega_i [1/s] is not 0, and
+       * B = Psi diag(d) Psi^T Mr (r x r): the modal damping
+       * C = (M V Psi) diag(d) (M V Psi)^T gives C V = (M V) B and
+       * V^T C V = Mr B.
+       */
+      struct SubspaceModalDamping
+      {
+        Eigen::MatrixXd Psi; ///< r x m
+        Eigen::VectorXd d;   ///< m, 2 zeta omega [1/s]
+        Eigen::MatrixXd B;   ///< r x r
+      };
+
+      /**
+       * The modal damping of @p modal on the subspace of @p Mr, @p Ksr
+       * (see SubspaceModalDamping).
+       * @throws std::runtime_error if Mr is not positive definite.
+       */
+      SubspaceModalDamping
+      subspace_modal_damping(const Eigen::MatrixXd                    &Mr,
+                             const Eigen::MatrixXd                    &Ksr,
+                             const physics::MatrixParts::ModalDamping &modal);
     } // namespace internal
   }   // namespace eigen
 } // namespace squeal

@@ -239,6 +239,9 @@ namespace squeal
         const PETScMatrix &M, &C, &K;
         MPI_Comm           comm;
         Eigen::MatrixXd    V, WM, WC, WK, Mr, Cr, Kr;
+        // the modal damping U diag(d) U^T once fixed (local rows of U)
+        Eigen::MatrixXd U;
+        Eigen::VectorXd d;
 
         // an empty subspace of the model at a point
         explicit Subspace(const PointMatrices &A)
@@ -264,7 +267,41 @@ namespace squeal
           , Mr(start.Mr)
           , Cr(start.Cr)
           , Kr(start.Kr)
+          , U(start.modal_U)
+          , d(start.modal_d)
         {}
+
+        // C N: the sparse (Rayleigh) C and the modal damping
+        Eigen::MatrixXd
+        damping_times(const Eigen::MatrixXd &N) const
+        {
+          Eigen::MatrixXd CN = multiply(C, N);
+          if (U.cols() > 0)
+            {
+              Eigen::MatrixXd c = U.transpose() * N;
+              sum_over_ranks(c, comm);
+              CN += U * (d.asDiagonal() * c);
+            }
+          return CN;
+        }
+
+        // Fixes the modal damping of @p modal on the current span (its
+        // Ritz modes of K_s, M: the exact modes when the span holds them)
+        // and adds it to the stored C V and V^T C V.
+        void
+        fix_modal_damping(const PETScMatrix                        &K_s,
+                          const physics::MatrixParts::ModalDamping &modal)
+        {
+          if (!modal.active() || V.cols() == 0)
+            return;
+          Eigen::MatrixXd Ksr = V.transpose() * multiply(K_s, V);
+          sum_over_ranks(Ksr, comm);
+          const auto m = internal::subspace_modal_damping(Mr, Ksr, modal);
+          U            = WM * m.Psi;
+          d            = m.d;
+          WC += WM * m.B;
+          Cr += Mr * m.B;
+        }
 
         // Appends the part of the block T M-orthogonal to V: two passes of
         // T -= V (V^T M V)^-1 V^T M T, exact whatever V's orthonormality;
@@ -321,7 +358,7 @@ namespace squeal
             S = internal::orthonormalising_transform(gram_k);
           const Eigen::MatrixXd N       = Tk * S;
           const Eigen::MatrixXd NM      = MTk * S;
-          const Eigen::MatrixXd NC      = multiply(C, N);
+          const Eigen::MatrixXd NC      = damping_times(N);
           const Eigen::MatrixXd NK      = multiply(K, N);
           const auto            project = [&](const Eigen::MatrixXd &X,
                                    const Eigen::MatrixXd &Y) {
@@ -549,8 +586,12 @@ namespace squeal
       const auto          square = [](const double f) {
         return std::pow(2. * numbers::PI * f, 2);
       };
-      const double sigma  = -w_t * w_t;
-      const double top    = square(band.basis_factor * band.f_max);
+      const double sigma = -w_t * w_t;
+      // the basis holds the modally damped modes too
+      const double f_top =
+        std::max(band.basis_factor * band.f_max,
+                 model.modal.active() ? model.modal.cutoff : 0.);
+      const double top    = square(f_top);
       const auto   counts = count_eigenvalues_below(
         K_s, M, {sigma, square(band.f_min), square(band.f_max), top});
       if (counts[0] > 0)
@@ -584,8 +625,7 @@ namespace squeal
         throw std::runtime_error(
           "full solver: the symmetric eigensolver returned " +
           std::to_string(modes.size()) + " modes below " +
-          std::to_string(band.basis_factor * band.f_max) +
-          " Hz where the inertia count gives " +
+          std::to_string(f_top) + " Hz where the inertia count gives " +
           std::to_string(r.symmetric_in_basis));
       const double t_symmetric = seconds_since(start);
 
@@ -600,6 +640,7 @@ namespace squeal
         }
       Subspace s(A);
       s.append(Phi, true);
+      s.fix_modal_damping(K_s, model.modal);
       // static corrections of the damping and the friction forces
       // (K - K_s) Phi = K Phi - M Phi Omega^2 (V = Phi to the eigensolver's
       // tolerance: enough for a direction of the subspace)
@@ -641,8 +682,7 @@ namespace squeal
       pcout << "  full solver: " << result.size()
             << " modes in the band; symmetric problem (no friction) "
             << r.symmetric_in_band << " in the band and "
-            << r.symmetric_in_basis << " up to "
-            << band.basis_factor * band.f_max
+            << r.symmetric_in_basis << " up to " << f_top
             << " Hz by Sylvester inertia, all in the basis; " << r.basis_size
             << " basis vectors, largest relative residual "
             << r.largest_residual << " after " << r.rounds << " rounds ("
@@ -725,6 +765,7 @@ namespace squeal
             s.append(std::move(b));
         }
       const auto t_project = std::chrono::steady_clock::now();
+      s.fix_modal_damping(K_s, model.modal);
       const auto pairs =
         internal::projected_eigenpairs(s.Mr,
                                        s.Cr,

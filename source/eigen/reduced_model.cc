@@ -280,68 +280,108 @@ namespace squeal
             A += a[k] * Ar[k];
         return A;
       };
-      const Eigen::MatrixXd M = combine(c.mass), K = combine(c.stiffness),
-                            C = combine(c.damping);
-      using Complex           = std::complex<double>;
+      const Eigen::MatrixXd M = combine(c.mass), K = combine(c.stiffness);
+      Eigen::MatrixXd       C = combine(c.damping);
+      // the modal damping: C V = (M V) B, V^T C V = M_r B
+      const bool            modal = parts.modal.active();
+      const Eigen::MatrixXd B =
+        modal ? internal::subspace_modal_damping(M,
+                                                 combine(c.symmetric_stiffness),
+                                                 parts.modal)
+                  .B :
+                Eigen::MatrixXd();
+      if (modal)
+        C += M * B;
+      using Complex = std::complex<double>;
       std::vector<ReducedEigenPair> pairs;
       for (auto &pair : internal::projected_eigenpairs(M, C, K, f_min, f_max))
         pairs.push_back({pair.lambda, std::move(pair.q), -1.});
       if (has_residuals && !pairs.empty())
         {
-          // ||sum_k a_k A_k V q||^2 = sum_kl conj(a_k) a_l h_kl with
-          // h_kl = q^H G_kl q and h_lk = conj(h_kl) (G_lk = G_kl^T); all
-          // pairs at once, as real matrix products.
-          const int       m = pairs.size();
-          Eigen::MatrixXd Qr(r, m), Qi(r, m);
+          // A residual is sum_k A_k V (a_k q + b_k B q) (b = 0 without the
+          // modal damping, which adds lambda M V B q): over the extended
+          // parts e = (v, k), v = 0 for q and 1 for B q, its squared norm
+          // is sum_ef conj(a_e) a_f h_ef with h_ef = x_v^H G_kl x_w and
+          // h_fe = conj(h_ef) (G_lk = G_kl^T); all pairs at once, as real
+          // matrix products.
+          const int                    m       = pairs.size();
+          const unsigned int           n_sides = modal ? 2 : 1;
+          const unsigned int           n_ext   = n_sides * n_parts;
+          std::vector<Eigen::MatrixXd> Xr(n_sides, Eigen::MatrixXd(r, m)),
+            Xi(n_sides, Eigen::MatrixXd(r, m));
           for (int j = 0; j < m; ++j)
             {
-              Qr.col(j) = pairs[j].q.real();
-              Qi.col(j) = pairs[j].q.imag();
+              Xr[0].col(j) = pairs[j].q.real();
+              Xi[0].col(j) = pairs[j].q.imag();
+            }
+          if (modal)
+            {
+              Xr[1] = B * Xr[0];
+              Xi[1] = B * Xi[0];
             }
           std::vector<std::vector<std::vector<Complex>>> h(
             m,
-            std::vector<std::vector<Complex>>(n_parts,
-                                              std::vector<Complex>(n_parts)));
+            std::vector<std::vector<Complex>>(n_ext,
+                                              std::vector<Complex>(n_ext)));
           for (unsigned int k = 0; k < n_parts; ++k)
             for (unsigned int l = k; l < n_parts; ++l)
               if (active[k] && active[l])
-                {
-                  const Eigen::MatrixXd A = G[k][l] * Qr, B = G[k][l] * Qi;
-                  const Eigen::VectorXd re =
-                    (Qr.cwiseProduct(A) + Qi.cwiseProduct(B)).colwise().sum();
-                  const Eigen::VectorXd im =
-                    (Qr.cwiseProduct(B) - Qi.cwiseProduct(A)).colwise().sum();
-                  for (int j = 0; j < m; ++j)
-                    {
-                      h[j][k][l] = {re[j], im[j]};
-                      h[j][l][k] = std::conj(h[j][k][l]);
-                    }
-                }
+                for (unsigned int w = 0; w < n_sides; ++w)
+                  {
+                    const Eigen::MatrixXd A  = G[k][l] * Xr[w],
+                                          Bi = G[k][l] * Xi[w];
+                    for (unsigned int v = 0; v < n_sides; ++v)
+                      {
+                        const Eigen::VectorXd re =
+                          (Xr[v].cwiseProduct(A) + Xi[v].cwiseProduct(Bi))
+                            .colwise()
+                            .sum();
+                        const Eigen::VectorXd im =
+                          (Xr[v].cwiseProduct(Bi) - Xi[v].cwiseProduct(A))
+                            .colwise()
+                            .sum();
+                        const unsigned int e = v * n_parts + k,
+                                           f = w * n_parts + l;
+                        for (int j = 0; j < m; ++j)
+                          {
+                            h[j][e][f] = {re[j], im[j]};
+                            h[j][f][e] = std::conj(h[j][e][f]);
+                          }
+                      }
+                  }
           using Vector = std::vector<Complex>;
-          const auto as_complex =
-            [n_parts](const physics::MatrixParts::Coefficients &a) {
-              Vector z(n_parts);
+          // the extended coefficients of sum_k a_k A_k V q (+ b_k A_k V B q)
+          const auto extended =
+            [&](const physics::MatrixParts::Coefficients &a,
+                const Complex                             z,
+                const physics::MatrixParts::Coefficients *b) {
+              Vector x(n_ext, 0.);
               for (unsigned int k = 0; k < n_parts; ++k)
-                z[k] = a[k];
-              return z;
+                {
+                  x[k] = z * a[k];
+                  if (modal && b)
+                    x[n_parts + k] = (*b)[k];
+                }
+              return x;
             };
-          const Vector mass      = as_complex(c.mass),
-                       damping   = as_complex(c.damping),
-                       stiffness = as_complex(c.stiffness);
           for (int j = 0; j < m; ++j)
             {
               const auto norm = [&](const Vector &a) {
                 Complex sum = 0;
-                for (unsigned int k = 0; k < n_parts; ++k)
-                  for (unsigned int l = 0; l < n_parts; ++l)
-                    sum += std::conj(a[k]) * a[l] * h[j][k][l];
+                for (unsigned int e = 0; e < n_ext; ++e)
+                  if (a[e] != 0.)
+                    for (unsigned int f = 0; f < n_ext; ++f)
+                      sum += std::conj(a[e]) * a[f] * h[j][e][f];
                 return std::sqrt(std::max(0., sum.real()));
               };
-              const Complex lambda = pairs[j].lambda;
-              Vector        total(n_parts);
-              for (unsigned int k = 0; k < n_parts; ++k)
-                total[k] = lambda * lambda * mass[k] + lambda * damping[k] +
-                           stiffness[k];
+              const Complex lambda   = pairs[j].lambda;
+              const Vector  mass     = extended(c.mass, 1., nullptr),
+                           damping   = extended(c.damping, 1., &c.mass),
+                           stiffness = extended(c.stiffness, 1., nullptr);
+              Vector total(n_ext);
+              for (unsigned int e = 0; e < n_ext; ++e)
+                total[e] = lambda * lambda * mass[e] + lambda * damping[e] +
+                           stiffness[e];
               pairs[j].residual =
                 norm(total) /
                 (std::norm(lambda) * norm(mass) +
@@ -374,6 +414,15 @@ namespace squeal
       result.Mr = combine(c.mass, Ar, r);
       result.Cr = combine(c.damping, Ar, r);
       result.Kr = combine(c.stiffness, Ar, r);
+      if (parts.modal.active())
+        {
+          const auto m = internal::subspace_modal_damping(
+            result.Mr, combine(c.symmetric_stiffness, Ar, r), parts.modal);
+          result.modal_U = result.MV * m.Psi;
+          result.modal_d = m.d;
+          result.CV += result.MV * m.B;
+          result.Cr += result.Mr * m.B;
+        }
       return result;
     }
 

@@ -522,6 +522,15 @@ namespace squeal
                         Patterns::Integer(0, 1000),
                         "Levenberg-Marquardt steps at most (each one "
                         "symmetric eigensolve of the full model).");
+      prm.declare_entry("Tolerance",
+                        str(tolerance),
+                        Patterns::Double(1e-14, 0.1),
+                        "Levenberg-Marquardt stops when an accepted step "
+                        "lowers the cost by less than this fraction of it, "
+                        "or moves the (log-scaled) parameters by less than "
+                        "this relative to them [-]. Near the minimum the "
+                        "cost is flat within the eigensolver's noise, and a "
+                        "tighter value only creeps.");
       prm.declare_entry("MAC threshold",
                         str(mac_threshold),
                         Patterns::Double(0.01, 1.),
@@ -551,6 +560,7 @@ namespace squeal
       configurations     = prm.get("Configurations");
       measurement_error  = prm.get_double("Measurement error");
       max_iterations     = prm.get_integer("Maximum iterations");
+      tolerance          = prm.get_double("Tolerance");
       mac_threshold      = prm.get_double("MAC threshold");
       frequency_window   = prm.get_double("Frequency window");
       maximum_frequency  = prm.get_double("Maximum frequency");

@@ -172,6 +172,21 @@ namespace squeal
                                          Patterns::Double::max_double_value),
                         "Rayleigh stiffness coefficient beta [s] (multiplies "
                         "the structural stiffness, not the interface).");
+      prm.declare_entry(
+        "Modal damping ratios",
+        "",
+        Patterns::Anything(),
+        "Modal damping of the complex eigenvalue analysis, added to the "
+        "Rayleigh damping: `f1: zeta1; f2: zeta2; ...` with frequencies "
+        "f [Hz] ascending and damping ratios zeta in [0, 1) (measured "
+        "modal damping, or one `0: zeta` for a uniform ratio). Every mode "
+        "phi_i (M-normalised) of the frictionless assembly (K without "
+        "friction, M) up to Eigensolver/Maximum frequency x Reduced band "
+        "factor gets the ratio interpolated linearly at its frequency f_i "
+        "(constant beyond the ends): C += sum_i 2 zeta(f_i) omega_i "
+        "M phi_i phi_i^T M. Set Alpha and Beta to 0 for modal damping "
+        "alone. Empty: none. Not for the braking run, the sensitivities or "
+        "Output/Export matrices.");
       prm.leave_subsection();
     }
 
@@ -181,6 +196,35 @@ namespace squeal
       prm.enter_subsection("Damping");
       alpha = prm.get_double("Alpha");
       beta  = prm.get_double("Beta");
+      modal_ratios.clear();
+      for (const std::string &item :
+           Utilities::split_string_list(prm.get("Modal damping ratios"), ';'))
+        {
+          const std::string where =
+            "Damping/Modal damping ratios, item '" + item + "'";
+          const auto fields = Utilities::split_string_list(item, ':');
+          double     f = -1., zeta = -1.;
+          bool       ok = fields.size() == 2;
+          try
+            {
+              if (ok)
+                {
+                  f    = Utilities::string_to_double(fields[0]);
+                  zeta = Utilities::string_to_double(fields[1]);
+                }
+            }
+          catch (...)
+            {
+              ok = false;
+            }
+          check(ok, where + ": write it `frequency_Hz: ratio`");
+          check(std::isfinite(f) && f >= 0. && zeta >= 0. && zeta < 1.,
+                where + ": the frequency must be >= 0 Hz and the ratio in "
+                        "[0, 1)");
+          check(modal_ratios.empty() || f > modal_ratios.back().first,
+                where + ": the frequencies must ascend");
+          modal_ratios.emplace_back(f, zeta);
+        }
       prm.leave_subsection();
     }
 

@@ -156,6 +156,26 @@ namespace squeal
             "Scene/Analysis = model updating needs Model updating/Parameters "
             "(the named parameters to fit, with bounds) and Model "
             "updating/Targets (the CSV of measured modes)");
+      if (!damping.modal_ratios.empty())
+        {
+          check(scene.analysis == "cea" || scene.analysis == "preloaded cea",
+                "Damping/Modal damping ratios is a damping of the complex "
+                "eigenvalue analysis (Scene/Analysis = cea or preloaded "
+                "cea), not of " +
+                  scene.analysis +
+                  " (the braking run takes the Rayleigh damping); leave it "
+                  "empty");
+          check(output.sensitivities == "none",
+                "Output/Sensitivities = " + output.sensitivities +
+                  " does not go with Damping/Modal damping ratios: the "
+                  "modal damping depends on the parameters through the "
+                  "modes, which the affine sensitivities leave out; set it "
+                  "to none");
+          check(output.export_points.empty(),
+                "Output/Export matrices does not go with Damping/Modal "
+                "damping ratios: the modal damping is a dense matrix, not "
+                "part of the exported C; leave one of them empty");
+        }
       check(output.sensitivities == "none" || eigensolver.method == "full",
             "Output/Sensitivities = " + output.sensitivities +
               " needs Eigensolver/Method = full (it is " + eigensolver.method +

@@ -515,8 +515,11 @@ namespace squeal
         return v == 0. ? 1. : v;
       };
       MatrixParts parts;
-      parts.reference = nominal;
-      next_part       = 0;
+      parts.reference    = nominal;
+      parts.modal.ratios = prm.damping.modal_ratios;
+      parts.modal.cutoff =
+        prm.eigensolver.f_max * prm.eigensolver.reduced_band_factor;
+      next_part = 0;
       const auto [fixed_mass, fixed_stiffness] =
         assemble_elasticity(nominal, parts);
       add_masses(*part_matrices[fixed_mass], pcout);
@@ -713,6 +716,32 @@ namespace squeal
       for (auto *k : stiffness_parts)
         k->compress(VectorOperation::add);
       return {0u, static_cast<unsigned int>(mass_keys.size())};
+    }
+
+    double
+    MatrixParts::ModalDamping::ratio(const double f) const
+    {
+      if (ratios.empty())
+        return 0.;
+      if (f <= ratios.front().first)
+        return ratios.front().second;
+      for (std::size_t k = 1; k < ratios.size(); ++k)
+        if (f <= ratios[k].first)
+          {
+            const auto [f0, z0] = ratios[k - 1];
+            const auto [f1, z1] = ratios[k];
+            return z0 + (z1 - z0) * (f - f0) / (f1 - f0);
+          }
+      return ratios.back().second;
+    }
+
+    double
+    MatrixParts::ModalDamping::coefficient(const double omega2) const
+    {
+      const double omega = std::sqrt(std::max(omega2, 0.));
+      if (!(omega2 > 0.) || omega > 2. * numbers::PI * cutoff)
+        return 0.;
+      return 2. * ratio(omega / (2. * numbers::PI)) * omega;
     }
 
     MatrixParts::Combination

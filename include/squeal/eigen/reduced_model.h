@@ -57,6 +57,11 @@ namespace squeal
     struct Projection
     {
       Eigen::MatrixXd V, MV, CV, KV, Mr, Cr, Kr;
+      /// the modal damping C_modal = U diag(d) U^T (physics::MatrixParts::
+      /// ModalDamping) of the reduced model at the point: U = M V Psi
+      /// (local rows x m), d = 2 zeta omega [1/s] (m); empty without it
+      Eigen::MatrixXd modal_U;
+      Eigen::VectorXd modal_d; ///< see modal_U
     };
 
     /** The projected model of a StructuralModel. */

@@ -200,11 +200,19 @@ namespace squeal
       parse_parameters(ParameterHandler &prm);
     };
 
-    /** Rayleigh damping C = alpha M + beta K on the whole structure. */
+    /**
+     * Damping of the structure: Rayleigh C = alpha M + beta K on the whole
+     * structure, plus (CEA only) modal damping of the frictionless
+     * assembly's modes (physics::MatrixParts::ModalDamping).
+     */
     struct Damping
     {
       double alpha = 0.02; ///< 1/s
       double beta  = 1e-7; ///< s
+      /// Modal damping ratios zeta(f) [-] at frequencies f [Hz]: ascending
+      /// (f, zeta) pairs, linear between them and constant beyond the
+      /// ends; empty: no modal damping.
+      std::vector<std::pair<double, double>> modal_ratios;
       /** Declares the subsection's entries: defaults, ranges, help (SI units).
        */
       void
@@ -513,8 +521,10 @@ namespace squeal
       std::string configurations;
       double      measurement_error = 0.01; ///< relative std of a frequency [-]
       unsigned int max_iterations   = 30;   ///< Levenberg-Marquardt steps
-      double       mac_threshold    = 0.6;  ///< least MAC of a pairing by shape
-      double       frequency_window = 0.5;  ///< relative, pairing by frequency
+      /// stop when a step lowers the cost by less than this fraction [-]
+      double tolerance        = 1e-5;
+      double mac_threshold    = 0.6; ///< least MAC of a pairing by shape
+      double frequency_window = 0.5; ///< relative, pairing by frequency
       /// Hz, the highest model mode computed; 0: 1.5 x the highest target
       double maximum_frequency = 0.;
       /** Declares the subsection's entries: defaults, ranges, help (SI units).

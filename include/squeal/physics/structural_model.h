@@ -123,6 +123,50 @@ namespace squeal
         Coefficients springs;             ///< the spring sets' parts [N/m]
       };
 
+      /**
+       * Modal damping of the complex eigenvalue analysis (parameter
+       * Damping/Modal damping ratios), added to the Rayleigh C(p):
+       *   C_modal(p) = sum_i 2 zeta(f_i) omega_i M phi_i phi_i^T M
+       * over the modes (omega_i = 2 pi f_i [rad/s], phi_i M-normalised) of
+       * the frictionless assembly (K_s + K_n, M) at p up to @ref cutoff.
+       * A dense n x n matrix of rank m: never assembled; each eigensolver
+       * applies it on its subspace from that subspace's Ritz modes of
+       * (K_s + K_n, M), which are the exact modes in the full solver (its
+       * subspace contains them) and their reduced-basis approximations in
+       * the reduced model (eigen/dense_block.h: subspace_modal_damping()).
+       */
+      struct ModalDamping
+      {
+        /// (f [Hz], zeta [-]) ascending; zeta linear in f between them,
+        /// constant beyond the ends; empty: no modal damping
+        std::vector<std::pair<double, double>> ratios;
+        /// highest damped mode [Hz]: Eigensolver/Maximum frequency x
+        /// Reduced band factor
+        double cutoff = 0.;
+
+        /** Whether any modal damping is given. */
+        bool
+        active() const
+        {
+          return !ratios.empty();
+        }
+
+        /** zeta(f) [-] at @p f [Hz] (0 without ratios). */
+        double
+        ratio(double f) const;
+
+        /**
+         * The modal damping coefficient 2 zeta(f) omega [1/s] of a mode
+         * with eigenvalue @p omega2 = omega^2 [1/s^2]; 0 at or below 0 and
+         * above (2 pi cutoff)^2.
+         */
+        double
+        coefficient(double omega2) const;
+      };
+
+      /// modal damping (none unless Damping/Modal damping ratios is given)
+      ModalDamping modal;
+
       /// the parts; the first is a mass part on the common pattern, the
       /// others on it or on their own nonzeros within it (own_pattern)
       std::vector<Part> parts;
