@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+// LAPACK's dgeev (deal.II's lapack_templates.h conflicts with Eigen's BLAS
+// declarations)
 extern "C" void
 dgeev_(const char *jobvl,
        const char *jobvr,
@@ -59,14 +61,14 @@ namespace test_tools
     A.bottomLeftCorner(n, n)  = -Kt / (g * g);
     A.bottomRightCorner(n, n) = -Ct / g;
     std::vector<double> wr(n2), wi(n2), work(1);
-    int                 lwork = -1, info = 0, one = 1;
+    int                 lwork = -1, info = 0, one = 1, size = n2;
     double              dummy = 0;
     const auto          qr    = [&]() {
       dgeev_("N",
              "N",
-             &n2,
+             &size,
              A.data(),
-             &n2,
+             &size,
              wr.data(),
              wi.data(),
              &dummy,
@@ -78,7 +80,7 @@ namespace test_tools
              &info);
     };
     qr();
-    lwork = int(work[0]);
+    lwork = static_cast<int>(work[0]);
     work.resize(lwork);
     qr();
     if (info != 0)

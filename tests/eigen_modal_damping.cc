@@ -80,17 +80,10 @@ namespace
     return c;
   }
 
+  // the eigenvalues of full (eigen::EigenPair) or reduced pairs
+  template <typename Pair>
   std::vector<std::complex<double>>
-  eigenvalues(const std::vector<eigen::EigenPair> &pairs)
-  {
-    std::vector<std::complex<double>> l;
-    for (const auto &p : pairs)
-      l.push_back(p.lambda);
-    return l;
-  }
-
-  std::vector<std::complex<double>>
-  eigenvalues(const std::vector<eigen::ReducedEigenPair> &pairs)
+  eigenvalues(const std::vector<Pair> &pairs)
   {
     std::vector<std::complex<double>> l;
     for (const auto &p : pairs)
