@@ -7,8 +7,8 @@ usage: check_modal_damping.py SQUEAL PRM WORKDIR
 
 Runs the program serially and with `mpirun -np 2`, then checks:
 - both exit 0 (so the run's own reduced-against-full check and the
-  certification of the near-threshold modes on the full model passed) and
-  the log states the modal damping;
+  certification of the near-threshold modes on the full model passed),
+  their modes.pvd load in VTK, and the log states the modal damping;
 - at mu = 0.01 the friction barely couples the modes, so every mode's
   damping ratio zeta = -Re lambda / |lambda| is the given ratio at its
   undamped frequency f / sqrt(1 - zeta^2) within 1e-3 (relative; the
@@ -21,29 +21,21 @@ Exits non-zero on the first failure.
 """
 import csv
 import os
-import shutil
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import run_squeal  # noqa: E402
 
 squeal, prm, work = sys.argv[1:4]
 os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
 os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
 os.makedirs(work, exist_ok=True)
+os.chdir(work)
 
 
 def fail(msg):
     print("FAILED:", msg)
     sys.exit(1)
-
-
-def run(cmd, out):
-    shutil.rmtree(out, ignore_errors=True)
-    with open(out + ".prm", "w") as f:
-        f.write(f"include {prm}\nsubsection Output\n  set Directory = {out}\nend\n")
-    r = subprocess.run(cmd + [out + ".prm"], capture_output=True, text=True)
-    if r.returncode != 0:
-        fail(f"{' '.join(cmd)} exited {r.returncode}:\n{r.stdout}\n{r.stderr}")
-    return r.stdout
 
 
 def read(out, name):
@@ -60,8 +52,7 @@ def ratio(f):
     return 0.002 + (0.0005 - 0.002) * (f - 1000.) / 9000.
 
 
-serial = os.path.join(work, "serial")
-log = run([squeal], serial)
+serial, log = run_squeal(squeal, prm, "serial")
 if "Modal damping of the frictionless modes up to 25000 Hz" not in log:
     fail("the log does not state the modal damping")
 ev = read(serial, "eigenvalues.csv")
@@ -91,8 +82,7 @@ if any(r["reduced_freq_Hz"] == "" for r in check) or largest > 1e-4:
 print(f"mu = 0.7: {len(regions)} unstable region(s); reduced against full "
       f"{largest:.3g} of |lambda| over {len(check)} pairs")
 
-parallel = os.path.join(work, "np2")
-run(["mpirun", "-np", "2", squeal], parallel)
+parallel, _ = run_squeal(squeal, prm, "np2", mpi=2)
 ev2 = read(parallel, "eigenvalues.csv")
 if len(ev2) != len(ev):
     fail(f"{len(ev2)} eigenvalues on 2 ranks, {len(ev)} serially")
