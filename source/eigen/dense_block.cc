@@ -218,7 +218,8 @@ namespace squeal
                            const Eigen::MatrixXd &K,
                            const double           f_min,
                            const double           f_max,
-                           const double           shift)
+                           const double           shift,
+                           const double           f_sought)
       {
         const int r = M.rows();
         if (r == 0)
@@ -284,7 +285,9 @@ namespace squeal
             const std::complex<double> lambda =
               shift == 0. ? mu : shift + 1. / std::conj(mu);
             const double f = lambda.imag() / (2 * M_PI);
-            if (f < f_min || f > f_max)
+            if (f < f_min || f > f_max ||
+                (f_sought > 0. && lambda.real() < 0. &&
+                 std::abs(lambda) > 2 * M_PI * f_sought))
               continue;
             Eigen::VectorXcd q(r);
             for (int i = 0; i < r; ++i)

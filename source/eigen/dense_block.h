@@ -104,8 +104,12 @@ namespace squeal
        * mu^2 P(tau) + mu (C + 2 tau M) + M = 0, P(tau) = tau^2 M + tau C + K:
        * the eigenvalues nearest tau are then the largest, and are computed
        * to a relative accuracy that the high frequencies of the subspace do
-       * not spoil. @throws std::runtime_error if LAPACK fails or M (or
-       * P(tau)) is singular.
+       * not spoil. With @p f_sought > 0 [Hz], a decaying pair whose
+       * modulus |lambda| / 2 pi (its undamped frequency) exceeds f_sought
+       * is left out: a heavily damped (zeta > sqrt(1 - (f_max /
+       * f_sought)^2)) mode from above the sought modes whose small
+       * Im lambda falls in the band. @throws std::runtime_error if LAPACK
+       * fails or M (or P(tau)) is singular.
        */
       std::vector<ProjectedPair>
       projected_eigenpairs(const Eigen::MatrixXd &M,
@@ -113,7 +117,8 @@ namespace squeal
                            const Eigen::MatrixXd &K,
                            const double           f_min,
                            const double           f_max,
-                           const double           shift = 0.);
+                           const double           shift    = 0.,
+                           const double           f_sought = 0.);
 
       /**
        * Modal damping on a subspace V (physics::MatrixParts::ModalDamping):

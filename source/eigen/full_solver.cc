@@ -657,7 +657,7 @@ namespace squeal
       for (r.rounds = 0;; ++r.rounds)
         {
           pairs = internal::projected_eigenpairs(
-            s.Mr, s.Cr, s.Kr, band.f_min, band.f_max, -w_t);
+            s.Mr, s.Cr, s.Kr, band.f_min, band.f_max, -w_t, f_top);
           Eigen::MatrixXd corrections;
           res = residuals(s, pairs, band.residual_tolerance, corrections);
           if (corrections.cols() == 0 || r.rounds == band.max_rounds)
@@ -773,7 +773,8 @@ namespace squeal
                                        band.f_min,
                                        band.f_max,
                                        -2. * numbers::PI *
-                                         band.target_frequency);
+                                         band.target_frequency,
+                                       band.basis_factor * band.f_max);
       Eigen::MatrixXd unused;
       const auto      res = residuals(s, pairs, 1., unused);
       r.projected_seconds = seconds_since(t_project);

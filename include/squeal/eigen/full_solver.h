@@ -24,6 +24,9 @@
  *    P^-1 [C Phi, (K - K_s) Phi], P = K_s + (2 pi f_t)^2 M (one block solve
  *    with the factorisation of step 2), M-orthonormalised; the projected
  *    quadratic problem is solved densely (2r x 2r companion, LAPACK dgeev).
+ *    A decaying pair whose modulus |lambda| / 2 pi lies above b f_max is
+ *    not sought even when its Im lambda falls in the band: a mode from
+ *    above the basis' modes damped beyond zeta = sqrt(1 - 1 / b^2).
  * 4. Refinement (block Davidson). The residual r of every Ritz pair in the
  *    band whose relative residual
  *    ||r|| / (|lambda|^2 ||M x|| + |lambda| ||C x|| + ||K x||) exceeds the
