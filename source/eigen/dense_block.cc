@@ -187,16 +187,16 @@ namespace squeal
           throw std::runtime_error(
             "modal damping: the projected mass matrix of the subspace is "
             "not positive definite");
-        std::vector<int> keep;
+        std::vector<std::pair<int, double>> keep; // (mode, 2 zeta omega)
         for (int i = 0; i < r; ++i)
-          if (modal.coefficient(es.eigenvalues()[i]) != 0.)
-            keep.push_back(i);
+          if (const double d = modal.coefficient(es.eigenvalues()[i]); d != 0.)
+            keep.emplace_back(i, d);
         result.Psi.resize(r, keep.size());
         result.d.resize(keep.size());
         for (unsigned int j = 0; j < keep.size(); ++j)
           {
-            result.Psi.col(j) = es.eigenvectors().col(keep[j]);
-            result.d[j]       = modal.coefficient(es.eigenvalues()[keep[j]]);
+            result.Psi.col(j) = es.eigenvectors().col(keep[j].first);
+            result.d[j]       = keep[j].second;
           }
         result.B =
           result.Psi * result.d.asDiagonal() * result.Psi.transpose() * sym_M;

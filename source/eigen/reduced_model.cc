@@ -353,17 +353,19 @@ namespace squeal
           // the extended coefficients of sum_k a_k A_k V q (+ b_k A_k V B q)
           const auto extended =
             [&](const physics::MatrixParts::Coefficients &a,
-                const Complex                             z,
                 const physics::MatrixParts::Coefficients *b) {
               Vector x(n_ext, 0.);
               for (unsigned int k = 0; k < n_parts; ++k)
                 {
-                  x[k] = z * a[k];
+                  x[k] = a[k];
                   if (modal && b)
                     x[n_parts + k] = (*b)[k];
                 }
               return x;
             };
+          const Vector mass      = extended(c.mass, nullptr),
+                       damping   = extended(c.damping, &c.mass),
+                       stiffness = extended(c.stiffness, nullptr);
           for (int j = 0; j < m; ++j)
             {
               const auto norm = [&](const Vector &a) {
@@ -374,11 +376,8 @@ namespace squeal
                       sum += std::conj(a[e]) * a[f] * h[j][e][f];
                 return std::sqrt(std::max(0., sum.real()));
               };
-              const Complex lambda   = pairs[j].lambda;
-              const Vector  mass     = extended(c.mass, 1., nullptr),
-                           damping   = extended(c.damping, 1., &c.mass),
-                           stiffness = extended(c.stiffness, 1., nullptr);
-              Vector total(n_ext);
+              const Complex lambda = pairs[j].lambda;
+              Vector        total(n_ext);
               for (unsigned int e = 0; e < n_ext; ++e)
                 total[e] = lambda * lambda * mass[e] + lambda * damping[e] +
                            stiffness[e];
