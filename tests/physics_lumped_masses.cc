@@ -17,7 +17,10 @@
 //    sit on) sum to u^T M u of the assembled mass for a random field,
 //    1e-10, with both kinds of masses; the explicit dynamics' lumped mass
 //    sums to rho V + 2 M per direction (1e-12);
-// 4. bad masses get one error naming the item.
+// 4. bad masses get one error naming the item;
+// 5. the mass as the named parameter `tip.m` (its own mass part, scaled):
+//    set to 3 M at the point, the first 3 frequencies against the closed
+//    form with 3 M (degree 2), 1e-5; the energy shares count it at 3 M.
 
 #include <deal.II/grid/grid_generator.h>
 
@@ -93,11 +96,13 @@ namespace
   }
 
   std::vector<double>
-  frequencies(const std::string &masses, const unsigned int degree)
+  frequencies(const std::string                                 &masses,
+              const unsigned int                                 degree,
+              const std::vector<std::pair<std::string, double>> &changes = {})
   {
     ParameterHandler handler;
     return test_tools::undamped_frequencies(
-      bar_parameters(masses, degree, handler), 1000., 70000.);
+      bar_parameters(masses, degree, handler), 1000., 70000., changes);
   }
 
   // The frequency of @p f nearest @p x.
@@ -226,5 +231,41 @@ main(int argc, char **argv)
   has("w: set=X1, mass=-1", "item 'w': need mass > 0");
   has("w: mass=1", "item 'w': give either point= or set=");
   has("w: mass=1, set=NOPE", "no face set 'NOPE'");
+
+  // 5. the named parameter tip.m
+  {
+    const auto kL3 = tip_mass_roots(rho * b * b * L / (3 * M), 3);
+    const auto f3  = frequencies(face_mass, 2, {{"tip.m", 3 * M}});
+    for (unsigned int k = 0; k < 3; ++k)
+      {
+        const double exact = kL3[k] * c / (2 * M_PI * L);
+        check("tip.m = 3 M, longitudinal mode " + std::to_string(k + 1),
+              nearest(f3, exact),
+              exact,
+              1e-5);
+      }
+    ParameterHandler                handler;
+    const parameters::AllParameters prm =
+      bar_parameters(face_mass + "; " + corners.str(), 1, handler);
+    ConditionalOStream       quiet(std::cout, false);
+    physics::StructuralModel model(prm, MPI_COMM_WORLD);
+    model.setup_and_assemble(quiet);
+    physics::PETScVector u(model.locally_owned_dofs, MPI_COMM_WORLD),
+      zero(model.locally_owned_dofs, MPI_COMM_WORLD),
+      Mu(model.locally_owned_dofs, MPI_COMM_WORLD);
+    for (const auto i : model.locally_owned_dofs)
+      u(i) = model.constraints.is_constrained(i) ? 0. : 1. + 1e-3 * i;
+    u.compress(VectorOperation::insert);
+    parameters::ScalarPoint p = model.scene->nominal_point();
+    p.set("tip.m", 3 * M);
+    p.set("corner 1.m", 0.5 * M);
+    physics::PETScMatrix Mm;
+    model.parts().mass(p, Mm);
+    Mm.vmult(Mu, u);
+    check("kinetic energy with tip.m = 3 M = u^T M(p) u",
+          physics::kinetic_energy_by_body(model, p, u, zero)[0],
+          u * Mu,
+          1e-10);
+  }
   return test_tools::n_failures == 0 ? 0 : 1;
 }

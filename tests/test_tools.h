@@ -149,19 +149,25 @@ namespace test_tools
   /**
    * The natural frequencies [Hz] in (f_min, f_max) of the undamped
    * structure of @p prm (bodies, springs, masses; no friction) at its
-   * nominal point, ascending: K phi = omega^2 M phi with SLEPc.
+   * nominal point with the named parameters @p changes set, ascending:
+   * K phi = omega^2 M phi with SLEPc.
    */
   inline std::vector<double>
-  undamped_frequencies(const squeal::parameters::AllParameters &prm,
-                       const double                             f_min,
-                       const double                             f_max)
+  undamped_frequencies(
+    const squeal::parameters::AllParameters           &prm,
+    const double                                       f_min,
+    const double                                       f_max,
+    const std::vector<std::pair<std::string, double>> &changes = {})
   {
     using namespace squeal;
     dealii::ConditionalOStream quiet(std::cout, false);
     physics::StructuralModel   model(prm, MPI_COMM_WORLD);
     model.setup_and_assemble(quiet);
     const physics::MatrixParts parts = model.parts();
-    const auto           c = parts.coefficients(model.scene->nominal_point());
+    parameters::ScalarPoint    p     = model.scene->nominal_point();
+    for (const auto &[name, value] : changes)
+      p.set(name, value);
+    const auto           c = parts.coefficients(p);
     physics::PETScMatrix K, M;
     parts.combine(c.structural, K);
     parts.combine(c.mass, M);

@@ -176,20 +176,21 @@ namespace squeal
       const std::string forms =
         " Values: 'log A B N' (N log-spaced values from A to B), "
         "'linear A B N' (N evenly spaced), or a comma-separated list.";
-      prm.declare_entry("First parameter",
-                        first.parameter,
-                        Patterns::Anything(),
-                        "The parameter along which modes are tracked and "
-                        "unstable regions are intervals (the x axis of the "
-                        "plots): a name of the scene's parameters, "
-                        "'<body>.E' (Young's modulus, Pa), '<body>.rho' "
-                        "(density, kg/m^3), '<pair>.mu' (friction "
-                        "coefficient; 'contact.mu' sets every pair's at "
-                        "once), '<pair>.k_n' (interface stiffness, "
-                        "N/m^3), '<springs>.k' (N/m per spring), "
-                        "'damping.alpha' (1/s), 'damping.beta' (s), "
-                        "'<body>.alpha', '<body>.beta' (a body with its own "
-                        "Rayleigh damping). squeal --validate lists them.");
+      prm.declare_entry(
+        "First parameter",
+        first.parameter,
+        Patterns::Anything(),
+        "The parameter along which modes are tracked and "
+        "unstable regions are intervals (the x axis of the "
+        "plots): a name of the scene's parameters, "
+        "'<body>.E' (Young's modulus, Pa), '<body>.rho' "
+        "(density, kg/m^3), '<pair>.mu' (friction "
+        "coefficient; 'contact.mu' sets every pair's at "
+        "once), '<pair>.k_n' (interface stiffness, "
+        "N/m^3), '<springs>.k' (N/m per spring), '<mass>.m' "
+        "(a lumped mass, kg), 'damping.alpha' (1/s), 'damping.beta' (s), "
+        "'<body>.alpha', '<body>.beta' (a body with its own "
+        "Rayleigh damping). squeal --validate lists them.");
       prm.declare_entry("First values",
                         first.values_text,
                         Patterns::Anything(),

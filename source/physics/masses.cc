@@ -73,10 +73,8 @@ namespace squeal
     }
 
     void
-    StructuralModel::add_masses(PETScMatrix &M, ConditionalOStream &pcout)
+    StructuralModel::add_mass(const scene::LumpedMass &m, PETScMatrix &M)
     {
-      if (scene->masses.empty())
-        return;
       const QGauss<2>                      quadrature(fe.degree + 1);
       FEFaceValues<3>                      fv(mapping,
                          fe,
@@ -85,96 +83,89 @@ namespace squeal
       const unsigned int                   n = fe.n_dofs_per_cell();
       FullMatrix<double>                   cell_m(n, n);
       std::vector<types::global_dof_index> dofs(n);
+      if (m.on_faces)
+        {
+          const double density = m.mass / boundary_area(*this, m.faces);
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const unsigned int f : cell->face_indices())
+                if (cell->face(f)->at_boundary() &&
+                    cell->face(f)->boundary_id() == m.faces)
+                  {
+                    fv.reinit(cell, f);
+                    cell_m = 0;
+                    for (unsigned int q = 0; q < quadrature.size(); ++q)
+                      for (unsigned int i = 0; i < n; ++i)
+                        for (unsigned int j = 0; j < n; ++j)
+                          if (fe.system_to_component_index(i).first ==
+                              fe.system_to_component_index(j).first)
+                            cell_m(i, j) += density * fv.shape_value(i, q) *
+                                            fv.shape_value(j, q) * fv.JxW(q);
+                    cell->get_dof_indices(dofs);
+                    constraints.distribute_local_to_global(cell_m, dofs, M);
+                  }
+          M.compress(VectorOperation::add);
+          return;
+        }
       const auto [points, component] = dof_support_points(*this);
       const auto hanging             = [&](const types::global_dof_index d) {
         const auto *entries = constraints.get_constraint_entries(d);
         return entries != nullptr && !entries->empty();
       };
-      double total = 0.;
-      for (const scene::LumpedMass &m : scene->masses)
-        {
-          total += m.mass;
-          if (m.on_faces)
-            {
-              const double density = m.mass / boundary_area(*this, m.faces);
-              for (const auto &cell : dof_handler.active_cell_iterators())
-                if (cell->is_locally_owned())
-                  for (const unsigned int f : cell->face_indices())
-                    if (cell->face(f)->at_boundary() &&
-                        cell->face(f)->boundary_id() == m.faces)
-                      {
-                        fv.reinit(cell, f);
-                        cell_m = 0;
-                        for (unsigned int q = 0; q < quadrature.size(); ++q)
-                          for (unsigned int i = 0; i < n; ++i)
-                            for (unsigned int j = 0; j < n; ++j)
-                              if (fe.system_to_component_index(i).first ==
-                                  fe.system_to_component_index(j).first)
-                                cell_m(i, j) += density * fv.shape_value(i, q) *
-                                                fv.shape_value(j, q) *
-                                                fv.JxW(q);
-                        cell->get_dof_indices(dofs);
-                        constraints.distribute_local_to_global(cell_m, dofs, M);
-                      }
-              continue;
-            }
-          // the nearest owned, not hanging x DoF on each rank, then the
-          // nearest of all (the lowest index among equally near ones)
-          double                  best = 1e300;
-          types::global_dof_index best_dof =
-            std::numeric_limits<types::global_dof_index>::max();
-          for (const auto d : locally_owned_dofs)
-            if (component[d] == 0 && !hanging(d))
+      // the nearest owned, not hanging x DoF on each rank, then the
+      // nearest of all (the lowest index among equally near ones)
+      double                  best = 1e300;
+      types::global_dof_index best_dof =
+        std::numeric_limits<types::global_dof_index>::max();
+      for (const auto d : locally_owned_dofs)
+        if (component[d] == 0 && !hanging(d))
+          {
+            const double r = points[d].distance(m.point);
+            if (r < best - 1e-12 || (r < best + 1e-12 && d < best_dof))
               {
-                const double r = points[d].distance(m.point);
-                if (r < best - 1e-12 || (r < best + 1e-12 && d < best_dof))
+                best     = std::min(best, r);
+                best_dof = d;
+              }
+          }
+      const double                  d_min = Utilities::MPI::min(best, comm);
+      const types::global_dof_index x_dof = Utilities::MPI::min(
+        best < d_min + 1e-12 ?
+          best_dof :
+          std::numeric_limits<types::global_dof_index>::max(),
+        comm);
+      // its node's three DoFs and body, from the rank that owns it
+      std::vector<double> found(4, 0.);
+      if (locally_owned_dofs.is_element(x_dof))
+        {
+          found[0] = x_dof;
+          for (const auto d : locally_owned_dofs)
+            if (component[d] != 0 &&
+                points[d].distance(points[x_dof]) <= 1e-12 * (1. + d_min))
+              found[component[d]] = d;
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                cell->get_dof_indices(dofs);
+                if (std::find(dofs.begin(), dofs.end(), x_dof) != dofs.end())
                   {
-                    best     = std::min(best, r);
-                    best_dof = d;
+                    found[3] = cell->material_id();
+                    break;
                   }
               }
-          const double                  d_min = Utilities::MPI::min(best, comm);
-          const types::global_dof_index x_dof = Utilities::MPI::min(
-            best < d_min + 1e-12 ?
-              best_dof :
-              std::numeric_limits<types::global_dof_index>::max(),
-            comm);
-          // its node's three DoFs and body, from the rank that owns it
-          std::vector<double> found(4, 0.);
-          if (locally_owned_dofs.is_element(x_dof))
-            {
-              found[0] = x_dof;
-              for (const auto d : locally_owned_dofs)
-                if (component[d] != 0 &&
-                    points[d].distance(points[x_dof]) <= 1e-12 * (1. + d_min))
-                  found[component[d]] = d;
-              for (const auto &cell : dof_handler.active_cell_iterators())
-                if (cell->is_locally_owned())
-                  {
-                    cell->get_dof_indices(dofs);
-                    if (std::find(dofs.begin(), dofs.end(), x_dof) !=
-                        dofs.end())
-                      {
-                        found[3] = cell->material_id();
-                        break;
-                      }
-                  }
-            }
-          std::vector<double> all(4);
-          Utilities::MPI::sum(found, comm, all);
-          PointMass pm;
-          for (unsigned int c = 0; c < 3; ++c)
-            pm.dofs[c] = static_cast<types::global_dof_index>(all[c]);
-          pm.mass = m.mass;
-          pm.body = static_cast<types::material_id>(all[3]);
-          for (const auto d : pm.dofs)
-            if (locally_owned_dofs.is_element(d))
-              M.add(d, d, m.mass);
-          point_masses.push_back(pm);
         }
+      std::vector<double> all(4);
+      Utilities::MPI::sum(found, comm, all);
+      PointMass pm;
+      pm.name = m.name;
+      for (unsigned int c = 0; c < 3; ++c)
+        pm.dofs[c] = static_cast<types::global_dof_index>(all[c]);
+      pm.mass = m.mass;
+      pm.body = static_cast<types::material_id>(all[3]);
+      for (const auto d : pm.dofs)
+        if (locally_owned_dofs.is_element(d))
+          M.add(d, d, m.mass);
+      point_masses.push_back(pm);
       M.compress(VectorOperation::add);
-      pcout << "Masses: " << scene->masses.size() << " lumped, " << total
-            << " kg in all" << std::endl;
     }
   } // namespace physics
 } // namespace squeal

@@ -95,11 +95,13 @@ namespace squeal
                   energy[cell->material_id()] +=
                     rho * (values[q] * values[q]) * fe_values.JxW(q);
               }
-          // the lumped masses, with the body they sit on
+          // the lumped masses (at their values at p), with the body they
+          // sit on
           for (const scene::LumpedMass &m : model.scene->masses)
             if (m.on_faces)
               {
-                const double density = m.mass / boundary_area(model, m.faces);
+                const double density =
+                  p.get(m.name + ".m") / boundary_area(model, m.faces);
                 for (const auto &cell :
                      model.dof_handler.active_cell_iterators())
                   if (cell->is_locally_owned())
@@ -118,7 +120,7 @@ namespace squeal
           for (const auto &pm : model.point_masses)
             for (const auto d : pm.dofs)
               if (model.locally_owned_dofs.is_element(d))
-                energy[pm.body] += pm.mass * owned(d) * owned(d);
+                energy[pm.body] += p.get(pm.name + ".m") * owned(d) * owned(d);
         }
       std::vector<double> total(energy.size());
       Utilities::MPI::sum(energy, model.comm, total);
@@ -522,7 +524,27 @@ namespace squeal
       next_part = 0;
       const auto [fixed_mass, fixed_stiffness] =
         assemble_elasticity(nominal, parts);
-      add_masses(*part_matrices[fixed_mass], pcout);
+      // each lumped mass its own part, scaled by its `<mass>.m` [kg]
+      point_masses.clear();
+      double total = 0.;
+      for (const scene::LumpedMass &m : scene->masses)
+        {
+          const std::string name = m.name + ".m";
+          PETScMatrix      &M    = new_part_matrix();
+          add_mass(m, M);
+          parts.parts.push_back({&M,
+                                 MatrixParts::Kind::mass,
+                                 "lumped mass " + m.name,
+                                 name,
+                                 reference_of(name),
+                                 "",
+                                 "damping.alpha",
+                                 false});
+          total += m.mass;
+        }
+      if (!scene->masses.empty())
+        pcout << "Masses: " << scene->masses.size() << " lumped, " << total
+              << " kg in all" << std::endl;
       for (const scene::SpringSet &springs : scene->springs)
         {
           const std::string k = springs.name + ".k";

@@ -98,6 +98,7 @@ namespace squeal
       const double beta_max  = 1e-3; // [s] damping ratio 3 at 1 kHz
       const double k_n_max   = 1e20; // [N/m^3] 1e8 x a pad's penalty
       const double k_max     = 1e15; // [N/m] 1e5 x a steel bar's EA/L
+      const double m_max     = 1e6;  // [kg] a loaded lorry
       std::vector<NamedParameter> list;
       for (const Body &b : bodies)
         {
@@ -157,6 +158,8 @@ namespace squeal
       for (const SpringSet &s : springs)
         list.push_back(
           {s.name + ".k", "N_per_m", s.stiffness, 0., false, k_max, true});
+      for (const LumpedMass &m : masses)
+        list.push_back({m.name + ".m", "kg", m.mass, 0., true, m_max, true});
       list.push_back(
         {"damping.alpha", "per_s", damping_alpha, 0., false, alpha_max, false});
       list.push_back(
@@ -210,6 +213,9 @@ namespace squeal
       for (SpringSet &k : springs)
         if (k.name == item)
           k.stiffness = value;
+      for (LumpedMass &m : masses)
+        if (m.name == item)
+          m.mass = value;
     }
 
     parameters::ScalarPoint

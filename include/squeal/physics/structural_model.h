@@ -384,6 +384,7 @@ namespace squeal
         std::array<dealii::types::global_dof_index, 3> dofs;      ///< x, y, z
         double                                         mass = 0.; ///< kg
         dealii::types::material_id body = 0; ///< the body it sits on
+        std::string                name;     ///< the scene's LumpedMass::name
       };
       /// the scene's point masses, each at the unconstrained node nearest
       /// its point (the lowest DoF index among equally near ones); the same
@@ -394,11 +395,12 @@ namespace squeal
     private:
       void
       setup_dofs_and_assemble(dealii::ConditionalOStream &pcout);
-      /// the scene's lumped masses into the mass part @p M (coefficient
-      /// 1): a face set's as a consistent surface mass of density m / area,
-      /// a point's on the diagonal of its node's three DoFs
+      /// the lumped mass @p m into its own mass part @p M (at its nominal
+      /// value): a face set's as a consistent surface mass of density
+      /// m / area, a point's on the diagonal of its node's three DoFs
+      /// (recorded in point_masses)
       void
-      add_masses(PETScMatrix &M, dealii::ConditionalOStream &pcout);
+      add_mass(const scene::LumpedMass &m, PETScMatrix &M);
       /// the parts of the bodies (one mass and one stiffness part per
       /// group of bodies that share their varied parameters and damping)
       /// into part_matrices and @p parts; returns the common (fixed) mass

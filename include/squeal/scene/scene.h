@@ -257,9 +257,9 @@ namespace squeal
      * A named scalar parameter of a scene: what a sweep varies (and model
      * updating calibrates). Its name is built from the scene's items:
      * `<body>.E` [Pa], `<body>.rho` [kg/m^3], `<pair>.mu` [-],
-     * `<pair>.k_n` [N/m^3], `<springs>.k` [N/m], `damping.alpha` [1/s],
-     * `damping.beta` [s], `<body>.alpha`, `<body>.beta` (a body with its
-     * own damping).
+     * `<pair>.k_n` [N/m^3], `<springs>.k` [N/m], `<mass>.m` [kg] (a
+     * lumped mass), `damping.alpha` [1/s], `damping.beta` [s],
+     * `<body>.alpha`, `<body>.beta` (a body with its own damping).
      */
     struct NamedParameter
     {
