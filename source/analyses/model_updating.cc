@@ -329,7 +329,17 @@ namespace squeal
             throw std::runtime_error(where + ": write it `name: lower, upper` "
                                              "or `name: lower, upper, linear`");
           updating::Parameter q;
-          q.name       = csv_fields(item.substr(0, colon))[0];
+          q.name        = csv_fields(item.substr(0, colon))[0];
+          const auto at = q.name.find('@');
+          q.scene_name  = q.name.substr(0, at);
+          if (at != std::string::npos)
+            {
+              q.configuration = q.name.substr(at + 1);
+              if (q.scene_name.empty() || q.configuration.empty())
+                throw std::runtime_error(
+                  where + ": write a parameter of one configuration "
+                          "`<parameter>@<configuration>`");
+            }
           const auto f = csv_fields(item.substr(colon + 1));
           if (f.size() < 2 || f.size() > 3 ||
               (f.size() == 3 && f[2] != "linear" && f[2] != "log"))
@@ -455,18 +465,26 @@ namespace squeal
       , model(prm, comm)
     {
       parameters = parse_updating_parameters(prm.updating.parameters);
-      std::set<std::string> varied;
+      std::set<std::string> varied, fitted;
       for (const auto &q : parameters)
-        varied.insert(q.name);
+        {
+          varied.insert(q.scene_name);
+          if (!fitted.insert(q.name).second)
+            throw std::runtime_error("Model updating/Parameters: " + q.name +
+                                     " is given twice");
+        }
       configurations.push_back({});
       for (const auto &c : parse_configurations(prm.updating.configurations))
         {
           for (const auto &[name, value] : c.values)
             {
-              if (varied.count(name) > 0 &&
-                  std::any_of(parameters.begin(),
+              if (std::any_of(parameters.begin(),
                               parameters.end(),
-                              [&](const auto &q) { return q.name == name; }))
+                              [&](const auto &q) {
+                                return q.scene_name == name &&
+                                       (q.configuration.empty() ||
+                                        q.configuration == c.name);
+                              }))
                 throw std::runtime_error(
                   "Model updating/Configurations: configuration '" + c.name +
                   "' sets " + name +
@@ -476,6 +494,19 @@ namespace squeal
             }
           configurations.push_back(c);
         }
+      for (const auto &q : parameters)
+        if (!q.configuration.empty() && std::none_of(configurations.begin(),
+                                                     configurations.end(),
+                                                     [&](const auto &c) {
+                                                       return c.name ==
+                                                              q.configuration;
+                                                     }))
+          throw std::runtime_error(
+            "Model updating/Parameters: " + q.name +
+            " names the "
+            "configuration '" +
+            q.configuration +
+            "', which is not one of Model updating/Configurations");
       model.varied          = varied;
       model.tie_constraints = contact::add_tie_constraints;
     }
@@ -483,12 +514,9 @@ namespace squeal
     updating::ModelModes
     ModelUpdatingAnalysis::modes_at(const std::vector<double> &values)
     {
-      TimerOutput::Scope       t(timer, "eigensolve and sensitivities");
-      const auto               parts = model.parts();
-      std::vector<std::string> names;
-      for (const auto &q : parameters)
-        names.push_back(q.name);
-      const auto        &es = prm.eigensolver;
+      TimerOutput::Scope t(timer, "eigensolve and sensitivities");
+      const auto         parts = model.parts();
+      const auto        &es    = prm.eigensolver;
       eigen::BandOptions band{0., f_max, es.target_frequency, es.tolerance, 40};
       band.symmetric_solver = es.symmetric_solver;
       ConditionalOStream   quiet(std::cout, false);
@@ -496,16 +524,40 @@ namespace squeal
       for (unsigned int c = 0; c < configurations.size(); ++c)
         if (used[c])
           {
+            // the parameters that act in configuration c: a parameter of
+            // one configuration replaces the common one there
+            const auto acts = [&](const updating::Parameter &q) {
+              if (!q.configuration.empty())
+                return q.configuration == configurations[c].name;
+              return std::none_of(parameters.begin(),
+                                  parameters.end(),
+                                  [&](const auto &o) {
+                                    return o.scene_name == q.scene_name &&
+                                           !o.configuration.empty() &&
+                                           o.configuration ==
+                                             configurations[c].name;
+                                  });
+            };
             parameters::ScalarPoint p = parts.reference;
             for (const auto &[name, value] : configurations[c].values)
               p.set(name, value);
+            std::vector<std::string> names;
+            std::vector<int>         column; // parameter j -> slope, or -1
             for (unsigned int j = 0; j < parameters.size(); ++j)
-              p.set(parameters[j].name, values[j]);
+              if (acts(parameters[j]))
+                {
+                  p.set(parameters[j].scene_name, values[j]);
+                  column.push_back(names.size());
+                  names.push_back(parameters[j].scene_name);
+                }
+              else
+                column.push_back(-1);
             auto modes = eigen::frictionless_modes(parts, p, band, 1., quiet);
             ++n_solves;
 
             // d omega^2 / dp_j = phi^T (K_j' - omega^2 M_j') phi from the
-            // parts' quadratic forms q_k = phi^T A_k phi
+            // parts' quadratic forms q_k = phi^T A_k phi (0 for a parameter
+            // that does not act in c)
             const auto slope = eigen::coefficient_slopes(parts, p, names);
             std::vector<bool> needed(parts.size(), false);
             for (const auto &d : slope)
@@ -529,13 +581,15 @@ namespace squeal
                       q[k] = phi * Aphi;
                     }
                 std::vector<double> d;
-                for (const auto &sl : slope)
+                for (const int j : column)
                   {
                     double dw2 = 0.;
-                    for (unsigned int k = 0; k < parts.size(); ++k)
-                      if (needed[k])
-                        dw2 +=
-                          (sl.symmetric_stiffness[k] - w2 * sl.mass[k]) * q[k];
+                    if (j >= 0)
+                      for (unsigned int k = 0; k < parts.size(); ++k)
+                        if (needed[k])
+                          dw2 += (slope[j].symmetric_stiffness[k] -
+                                  w2 * slope[j].mass[k]) *
+                                 q[k];
                     d.push_back(f > 0. ? dw2 / (8 * M_PI * M_PI * f) : 0.);
                   }
                 result.frequency.push_back(f);
@@ -603,7 +657,7 @@ namespace squeal
       std::vector<double> start;
       const auto          reference = model.parts().reference;
       for (const auto &q : parameters)
-        start.push_back(reference.get(q.name));
+        start.push_back(reference.get(q.scene_name));
       // the iteration's progress on rank 0's log as it goes
       updating::Result result = updating::update(
         [this](const std::vector<double> &v) { return modes_at(v); },
@@ -681,7 +735,7 @@ namespace squeal
       for (unsigned int j = 0; j < parameters.size(); ++j)
         {
           const auto &q = parameters[j];
-          par << q.name << ',' << scene.parameter(q.name).unit << ','
+          par << q.name << ',' << scene.parameter(q.scene_name).unit << ','
               << (q.log_scale ? "log" : "linear") << ',' << q.lower << ','
               << q.upper << ',' << r.initial[j] << ',' << r.value[j] << ','
               << r.standard_deviation[j] << ','

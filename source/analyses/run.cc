@@ -333,20 +333,33 @@ namespace squeal
             for (const auto &q :
                  parse_updating_parameters(prm.updating.parameters))
               {
-                known(q.name, "Parameters");
+                known(q.scene_name, "Parameters");
                 scene::check_parameter_value(
                   scene,
-                  q.name,
+                  q.scene_name,
                   q.lower,
                   "Model updating/Parameters, lower bound of " + q.name);
                 scene::check_parameter_value(
                   scene,
-                  q.name,
+                  q.scene_name,
                   q.upper,
                   "Model updating/Parameters, upper bound of " + q.name);
               }
-            for (const auto &c :
-                 parse_configurations(prm.updating.configurations))
+            const auto configurations =
+              parse_configurations(prm.updating.configurations);
+            for (const auto &q :
+                 parse_updating_parameters(prm.updating.parameters))
+              if (!q.configuration.empty() &&
+                  std::none_of(configurations.begin(),
+                               configurations.end(),
+                               [&](const auto &c) {
+                                 return c.name == q.configuration;
+                               }))
+                throw std::runtime_error(
+                  "Model updating/Parameters: " + q.name +
+                  " names the configuration '" + q.configuration +
+                  "', which is not one of Model updating/Configurations");
+            for (const auto &c : configurations)
               for (const auto &v : c.values)
                 {
                   known(v.first, "Configurations");

@@ -477,8 +477,10 @@ namespace squeal
         "The named scene parameters to fit (squeal --validate lists a "
         "scene's), each with its bounds in its unit: `name: lower, upper` "
         "(fitted on a log scale, lower > 0) or `name: lower, upper, linear`, "
-        "separated by `;`. Example: `pad.E: 1e8, 1e11; support.rho: 7000, "
-        "8500, linear`.");
+        "separated by `;`. `name@configuration` fits the parameter "
+        "separately in that configuration (of Configurations). Example: "
+        "`pad.E: 1e8, 1e11; support.rho: 7000, 8500, linear; pad on "
+        "disc.k_n@loaded: 1e11, 1e15`.");
       prm.declare_entry(
         "Targets",
         targets,

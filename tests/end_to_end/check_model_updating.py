@@ -13,6 +13,10 @@ value, and the fit from the file's values (10 GPa, 210 GPa, 1e13) must:
 - under mpirun -np 2 with damping.beta added (no frictionless mode depends
   on it): the same fitted values (1e-6 relative) and damping.beta reported
   not identifiable, with an infinite deviation and a zero singular value;
+- with a second configuration (block.rho = 3000, its interface at
+  k_n = 8e13: a load step) measured too and `block on base.k_n@heavy`
+  fitted beside the common parameters, both interface stiffnesses and the
+  moduli within 3 deviations (below 20 %) of their hidden values;
 - bad input fails with one error naming the item, and leaves no finished
   folder: an unknown parameter, a measurement point outside the mesh, a
   non-numeric frequency (file and line), a shape of the wrong length, no
@@ -52,15 +56,20 @@ def noise(state=[12345]):
 # 1. the "measurement": modes at the hidden values
 with open("probe.csv", "w") as f:
     f.write("label,frequency_Hz,weight,name\nprobe,50000,1,\n")
-bodies = (f"base: E={HIDDEN['base.E']}, nu=0.3, rho=7800; "
-          f"block: E={HIDDEN['block.E']}, nu=0.25, rho=2500")
-measured, _ = run_squeal(squeal, base, "measured", f"""subsection Scene
+
+
+def measure(name, k_n, rho):
+    """squeal's modes below 90 kHz at the hidden moduli, k_n and the
+    block's density rho, with their shapes at the 7 points."""
+    bodies = (f"base: E={HIDDEN['base.E']}, nu=0.3, rho=7800; "
+              f"block: E={HIDDEN['block.E']}, nu=0.25, rho={rho}")
+    folder, _ = run_squeal(squeal, base, name, f"""subsection Scene
   subsection Mesh file
     set Bodies = {bodies}
   end
 end
 subsection Interface
-  set Normal stiffness = {HIDDEN['block on base.k_n']}
+  set Normal stiffness = {k_n}
 end
 subsection Model updating
   set Targets = probe.csv
@@ -68,21 +77,34 @@ subsection Model updating
   set Frequency window = 10
 end
 """)
-modes = [m for m in rows(measured, "modes.csv") if float(m["freq_Hz"]) < 9e4]
-shape_columns = [c for c in modes[0] if c.startswith("shape ")]
+    return [m for m in rows(folder, "modes.csv") if float(m["freq_Hz"]) < 9e4]
+
+
+def write_targets(path, measured_sets):
+    """measured_sets: (configuration, modes); noisy frequencies and
+    shapes."""
+    columns = [c for c in measured_sets[0][1][0] if c.startswith("shape ")]
+    with open(path, "w") as f:
+        f.write("label,frequency_Hz,weight,name,configuration" +
+                "".join(f",{c}" for c in columns) + "\n")
+        for configuration, modes in measured_sets:
+            for m in modes:
+                shape = [float(m[c]) for c in columns]
+                big = max(abs(s) for s in shape)
+                f.write(f"\"mode {m['mode']} ({m['name']}) {configuration}\","
+                        f"{float(m['freq_Hz']) * (1 + SIGMA * noise()):.10g}"
+                        f",1,,{configuration}")
+                f.write("".join(f",{s + 0.01 * big * noise():.10g}"
+                                for s in shape))
+                f.write("\n")
+    return columns
+
+
+modes = measure("measured", HIDDEN["block on base.k_n"], 2500)
+shape_columns = write_targets("targets_measured.csv", [("", modes)])
 check("measured: modes below 90 kHz with shapes at 7 points",
       len(modes) >= 8 and len(shape_columns) == 7,
       f"{len(modes)} modes, {len(shape_columns)} shape columns", show=True)
-with open("targets_measured.csv", "w") as f:
-    f.write("label,frequency_Hz,weight,name" +
-            "".join(f",{c}" for c in shape_columns) + "\n")
-    for m in modes:
-        shape = [float(m[c]) for c in shape_columns]
-        big = max(abs(s) for s in shape)
-        f.write(f"\"mode {m['mode']} ({m['name']})\","
-                f"{float(m['freq_Hz']) * (1 + SIGMA * noise()):.10g},1,")
-        f.write("".join(f",{s + 0.01 * big * noise():.10g}" for s in shape))
-        f.write("\n")
 
 # 2. the fit from the file's values
 fit_prm = f"""subsection Model updating
@@ -149,6 +171,29 @@ with open(os.path.join(mpi, "summary.txt")) as f:
 check("summary.txt names damping.beta as not identifiable",
       "Not identifiable from these targets: damping.beta" in summary, summary)
 
+# 3b. a parameter of one configuration: the interface of a second state
+K_HEAVY = 8e13
+heavy = measure("measured_heavy", K_HEAVY, 3000)
+write_targets("targets_two_states.csv", [("", modes), ("heavy", heavy)])
+both, _ = run_squeal(squeal, base, "fitted_two_states", f"""subsection Model updating
+  set Targets = targets_two_states.csv
+  set Measurement error = {SIGMA}
+  set Configurations = heavy: block.rho = 3000
+  set Parameters = block.E: 1e9, 1e11; base.E: 5e10, 1e12; \\
+                   block on base.k_n: 1e11, 1e15; \\
+                   block on base.k_n@heavy: 1e11, 1e15
+end
+""")
+par3 = {r["parameter"]: r for r in rows(both, "updated_parameters.csv")}
+for name, hidden in list(HIDDEN.items()) + [("block on base.k_n@heavy",
+                                             K_HEAVY)]:
+    r = par3[name]
+    value, sd = float(r["fitted"]), float(r["standard_deviation"])
+    check(f"two states, {name}: within 3 deviations of the hidden value",
+          abs(value - hidden) <= 3 * sd and sd < 0.2 * value,
+          f"fitted {value:.6g}, hidden {hidden:.6g}, deviation {sd:.3g}",
+          show=True)
+
 
 # 4. bad input
 def fails(name, extra, expected):
@@ -199,6 +244,12 @@ fails("unknown_configuration", """subsection Model updating
 end
 """, "line 2: configuration 'stiff' is not one of Model "
    "updating/Configurations (soft)")
+fails("unknown_configuration_parameter", fit_prm + """subsection Model updating
+  set Parameters = block.E: 1e9, 1e11; block on base.k_n@stiff: 1e11, 1e15
+  set Configurations = soft: block.rho = 2000
+end
+""", "Model updating/Parameters: block on base.k_n@stiff names the "
+   "configuration 'stiff', which is not one of Model updating/Configurations")
 fails("no_targets", "", "needs Model updating/Parameters")
 fails("not_converged", fit_prm + """subsection Model updating
   set Maximum iterations = 1
