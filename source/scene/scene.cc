@@ -159,7 +159,7 @@ namespace squeal
         list.push_back(
           {s.name + ".k", "N_per_m", s.stiffness, 0., false, k_max, true});
       for (const LumpedMass &m : masses)
-        list.push_back({m.name + ".m", "kg", m.mass, 0., true, m_max, true});
+        list.push_back({m.name + ".m", "kg", m.mass, 0., false, m_max, true});
       list.push_back(
         {"damping.alpha", "per_s", damping_alpha, 0., false, alpha_max, false});
       list.push_back(
