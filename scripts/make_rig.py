@@ -12,11 +12,14 @@ it). The default DIR is prm/rig_pad<MM>.
 The rig (z is the shaft axis, the pad sits at +x; lengths in mm):
 - disc: steel annulus, inner radius 50, outer radius 120, 10 thick
   (z = 0 ... 10), its upper face the friction face;
-- hub: the two thick hubs that clamp the disc to the shaft, one steel ring
-  (radius 20 ... 65, z = -15 ... 25) bonded to the disc's inner 15 mm,
-  held at its bore (the shaft). Its modulus `hub.E` stands for the
-  stiffness of the clamping (the thesis' own updating found the hub
-  connection not perfectly rigid);
+- clamp: the two thick hubs clamp the disc's inner 15 mm (radius
+  50 ... 65) from both faces. The hubs themselves are rigid in the band
+  (thesis); their contact with the disc is not (the thesis' own updating
+  found the hub connection not perfectly rigid, and the measured (1,m)
+  modes sit lower than a clamped inner edge gives). So each face of the
+  clamped ring carries a 2 mm elastic layer held on its far face (the
+  rigid hub): its modulus `clamp.E` sets the clamping's axial and shear
+  stiffness, its low density keeps its own modes far above the band;
 - pad: friction material, a --pad x --pad x 10 block (default 10) centred
   at radius 100 on the disc;
 - force transducer: a 20 x 20 x 10 steel block on the pad (the tri-axial
@@ -50,7 +53,7 @@ from make_brake import Mesh, between, breaks, division, write_msh  # noqa
 
 # --- dimensions [mm] (thesis sec. 4.2.1; the hub and support: see above) --
 DISC_R_IN, DISC_R_OUT, DISC_THICKNESS = 50.0, 120.0, 10.0
-HUB_R_BORE, HUB_R_OUT, HUB_THICKNESS = 20.0, 65.0, 15.0
+CLAMP_R_OUT, CLAMP_THICKNESS = 65.0, 2.0
 PAD_RADIUS, PAD_HEIGHT = 100.0, 10.0
 TRANSDUCER_SIDE, TRANSDUCER_HEIGHT = 20.0, 10.0
 SUPPORT_SIDE, SUPPORT_HEIGHT = 40.0, 200.0
@@ -59,6 +62,8 @@ PLATE_STATIONS = 11                  # springs per row, evenly along z
 # --- materials (SI) --------------------------------------------------------
 STEEL = dict(E=210e9, nu=0.3, rho=7800)
 PAD = dict(E=10e9, nu=0.3, rho=2500)  # friction material (start value)
+# the clamping layer (start value; rho: 1/8 of steel's, its modes > 100 kHz)
+CLAMP = dict(E=2e10, nu=0.3, rho=1000)
 # --- lumped masses [kg] and springs [N/m] -----------------------------------
 ACCELEROMETER = 2.4e-3               # Bruel & Kjaer 4393
 WEIGHTS = 200.0 / 9.81               # 225 N (the support's 25 N + 200 N)
@@ -68,7 +73,7 @@ N_THETA = 32                         # disc cells along the circumference
 
 class RigMesh(Mesh):
     """make_brake's structured boxes, in (r, theta, z) for the disc and the
-    hub, in (x, y, z) for the pad, the transducer and the support."""
+    clamp, in (x, y, z) for the pad, the transducer and the support."""
 
     cartesian = ("pad", "support")
 
@@ -84,19 +89,20 @@ class RigMesh(Mesh):
 
 def build(pad):
     m = RigMesh()
-    # --- disc and hub: one bonded group on one (r, theta, z) lattice -----
+    # --- disc and clamp layers: one bonded group on one (r, theta, z)
+    # lattice
     ts = [2 * math.pi * j / N_THETA for j in range(N_THETA + 1)]
-    r_lat = [HUB_R_BORE] + breaks([DISC_R_IN, HUB_R_OUT, DISC_R_OUT], 14.0)
-    z0, z1 = -HUB_THICKNESS, DISC_THICKNESS + HUB_THICKNESS
+    r_lat = breaks([DISC_R_IN, CLAMP_R_OUT, DISC_R_OUT], 14.0)
     R = lambda a, b: between(r_lat, a, b)  # noqa: E731
-    # the friction face: the upper face outside the hub
-    m.box("disc", "disc", R(DISC_R_IN, HUB_R_OUT), ts, [0.0, DISC_THICKNESS])
-    m.box("disc", "disc", R(HUB_R_OUT, DISC_R_OUT), ts, [0.0, DISC_THICKNESS],
+    # the friction face: the upper face outside the clamp
+    m.box("disc", "disc", R(DISC_R_IN, CLAMP_R_OUT), ts, [0.0, DISC_THICKNESS])
+    m.box("disc", "disc", R(CLAMP_R_OUT, DISC_R_OUT), ts, [0.0, DISC_THICKNESS],
           {"disc face": "z1"})
-    m.box("hub", "disc", R(HUB_R_BORE, DISC_R_IN), ts,
-          [z0, 0.0, DISC_THICKNESS, z1], {"hub bore": "r0"})
-    for zs in ([z0, 0.0], [DISC_THICKNESS, z1]):
-        m.box("hub", "disc", R(DISC_R_IN, HUB_R_OUT), ts, zs)
+    m.box("clamp", "disc", R(DISC_R_IN, CLAMP_R_OUT), ts,
+          [-CLAMP_THICKNESS, 0.0], {"hub faces": "z0"})
+    m.box("clamp", "disc", R(DISC_R_IN, CLAMP_R_OUT), ts,
+          [DISC_THICKNESS, DISC_THICKNESS + CLAMP_THICKNESS],
+          {"hub faces": "z1"})
 
     # --- pad and transducer (one group, shared nodes) ---------------------
     h = pad / 2
@@ -119,57 +125,79 @@ def build(pad):
           division(PAD_RADIUS - s_half, PAD_RADIUS + s_half, 20.0),
           division(-s_half, s_half, 20.0), division(z_tr, z_top, 20.0),
           {"support bottom": "z0", "support top": "z1"})
-    return m, dict(z_pad=z_pad, z_tr=z_tr, z_top=z_top)
+    return m
 
 
-def write_scene(g, pad, path, mesh_name):
+def start_values():
+    """The scene's named parameters at the file's (start) values."""
+    v = {"disc.E": STEEL["E"], "disc.rho": STEEL["rho"],
+         "clamp.E": CLAMP["E"], "clamp.rho": CLAMP["rho"],
+         "pad.E": PAD["E"], "pad.rho": PAD["rho"],
+         "transducer.E": STEEL["E"], "transducer.rho": STEEL["rho"],
+         "support.E": STEEL["E"], "support.rho": STEEL["rho"],
+         "weights.m": WEIGHTS, "accelerometer.m": ACCELEROMETER,
+         "plates.k": K_PLATES, "plates radial.k": K_PLATES}
+    return v
+
+
+def scene_text(pad, mesh_name, values=None, header=None, extra=None):
+    """The Scene subsection for the rig with a --pad mm pad, reading
+    mesh_name, at the named parameters' values (start_values() updated by
+    values); extra: {body: "key=value, ..."} added to a body's entry."""
+    v = start_values()
+    v.update(values or {})
     mm = 1e-3
+    z_tr = DISC_THICKNESS + PAD_HEIGHT + TRANSDUCER_HEIGHT
 
     def point(x, y, z):
         return f"{x * mm:.6g} {y * mm:.6g} {z * mm:.6g}"
 
+    def body(name, nu):
+        more = (extra or {}).get(name)
+        return (f"E={v[name + '.E']:.10g}, nu={nu:g}, "
+                f"rho={v[name + '.rho']:.10g}" + (f", {more}" if more else ""))
+
     s_half = SUPPORT_SIDE / 2
     dz = SUPPORT_HEIGHT / (PLATE_STATIONS + 1)
     stations = " | ".join(
-        point(PAD_RADIUS + dx, side * s_half, g["z_tr"] + (i + 1) * dz)
+        point(PAD_RADIUS + dx, side * s_half, z_tr + (i + 1) * dz)
         for side in (-1, 1) for dx in PLATE_ROWS_X
         for i in range(PLATE_STATIONS))
     accelerometer = point(PAD_RADIUS, -pad / 2,
                           DISC_THICKNESS + PAD_HEIGHT / 2)
-    steel = f"E={STEEL['E']:g}, nu={STEEL['nu']:g}, rho={STEEL['rho']:g}"
-    text = f"""# The TriboBrake as built, {pad:g} x {pad:g} mm pad, from
+    if header is None:
+        header = f"""# The TriboBrake as built, {pad:g} x {pad:g} mm pad, from
 # scripts/make_rig.py (written by it: do not edit; rerun the script).
 # Lengths of the mesh in mm; the file's values are start values of the
 # updating (prm/rig_updating.prm).
-subsection Scene
+"""
+    return header + f"""subsection Scene
   set Type = mesh file
   subsection Mesh file
     set File = {mesh_name}
     set Length unit = 1e-3
-    set Bodies = disc: set=disc, {steel}, type=disc, \\
+    set Bodies = disc: set=disc, {body("disc", STEEL["nu"])}, type=disc, \\
                        face=disc face, axis=0 0 1, centre=0 0 0, \\
                        manifold=cylindrical; \\
-                 hub: set=hub, E=2e+10, nu=0.3, rho=7800, manifold=cylindrical; \\
-                 pad: set=pad, E={PAD['E']:g}, nu={PAD['nu']:g}, \\
-                      rho={PAD['rho']:g}; \\
-                 transducer: set=transducer, {steel}; \\
-                 support: set=support, {steel}
+                 clamp: set=clamp, {body("clamp", CLAMP["nu"])}, \\
+                        manifold=cylindrical; \\
+                 pad: set=pad, {body("pad", PAD["nu"])}; \\
+                 transducer: set=transducer, {body("transducer", STEEL["nu"])}; \\
+                 support: set=support, {body("support", STEEL["nu"])}
     set Contact pairs = pad on disc: slave=pad face, master=disc face
     set Ties = transducer on support: slave=transducer top, \\
                                       master=support bottom
-    set Holds = shaft: set=hub bore
-    set Masses = weights: set=support top, mass={WEIGHTS:.6g}; \\
-                 accelerometer: mass={ACCELEROMETER:g}, \\
+    set Holds = hubs: set=hub faces
+    set Masses = weights: set=support top, mass={v["weights.m"]:.10g}; \\
+                 accelerometer: mass={v["accelerometer.m"]:.10g}, \\
                                 point={accelerometer}
     set Springs = plates: body=support, direction=0 1 0, \\
-                          k={K_PLATES:g}, points={stations}; \\
+                          k={v["plates.k"]:.10g}, points={stations}; \\
                   plates radial: body=support, direction=1 0 0, \\
-                          k={K_PLATES:g}, points={stations}
+                          k={v["plates radial.k"]:.10g}, points={stations}
   end
 end
 """
-    with open(path, "w") as f:
-        f.write(text)
 
 
 def main():
@@ -184,9 +212,10 @@ def main():
     out = args.out or os.path.normpath(
         os.path.join(here, "..", "prm", f"rig_pad{args.pad:g}"))
     os.makedirs(out, exist_ok=True)
-    m, g = build(args.pad)
+    m = build(args.pad)
     write_msh(m, os.path.join(out, "rig.msh"))
-    write_scene(g, args.pad, os.path.join(out, "rig_scene.prm"), "rig.msh")
+    with open(os.path.join(out, "rig_scene.prm"), "w") as f:
+        f.write(scene_text(args.pad, "rig.msh"))
     n_cells = sum(len(c) for c in m.cells.values())
     print(f"make_rig.py: {out}/rig.msh and rig_scene.prm: "
           f"{len(m.coords)} nodes, {n_cells} hexahedra "

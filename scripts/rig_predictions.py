@@ -1,0 +1,133 @@
+#!/usr/bin/env python3
+"""Writes the complex eigenvalue analyses that predict squeal on the
+TriboBrake as built (thesis sec. 4.3; ../shared/spec/rig_experiments.md)
+from the fitted parameters of prm/rig_updating.prm.
+
+    scripts/rig_predictions.py UPDATED_PARAMETERS_CSV [--out DIR]
+
+writes DIR/<case>.prm (default DIR prm/rig_predictions), one CEA per squeal
+configuration, each sweeping the friction coefficient from 0 to the rig's
+0.3 (so that the tracks show which two modes lock in) at the
+configuration's load:
+- S1: 10 x 10 mm pad, 200 N;  S2: 250 N;
+- S3: 10 x 10 mm pad at 120, 70, 48 and 45 N (and 250 N: S2);
+- S4: 8 x 8 mm pad, 25 N (the support alone);
+- S5: 10 x 10 mm pad, 45 N, a rubber layer between the plates and the
+  support.
+The model is the fitted one with these changes, each a stated assumption:
+- the weights: (F - 25 N) / g on the support's top (`weights.m`);
+- the interface stiffness at a load F: the power law through the two
+  fitted values, k_n(F) = k_n(25 N) (F / 25 N)^n with
+  n = ln(k_n(225 N) / k_n(25 N)) / ln 9 (a rough contact's stiffness grows
+  as a power of the load);
+- the rotating state: the disc turning lowers the support frequencies by
+  about 500 Hz (thesis sec. 4.2.3: one end of each plate is compressed),
+  taken as the plates' tangential stiffness scaled by ROTATING_PLATES;
+- S5's rubber layer in series with the plates: the plates' stiffness
+  (both directions) scaled by RUBBER_PLATES, and the support's damping
+  raised (its own Rayleigh beta).
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from make_rig import scene_text  # noqa: E402
+
+G = 9.81
+SUPPORT_WEIGHT = 25.0           # N: the support alone
+MU = 0.3                        # the rig's friction coefficient (sec. 4.2.3)
+# (f_II - 500 Hz)^2 / f_II^2 at the fitted support mode II (2091 Hz): the
+# rigid-body support modes scale with the plates' stiffness
+ROTATING_PLATES = ((2091.0 - 500.0) / 2091.0) ** 2
+# a rubber layer a few times softer than the plates in series with them
+RUBBER_PLATES = 0.25
+RUBBER_BETA = 1e-6              # s: support damping ratio ~3 % at 5 kHz
+
+CASES = [  # name, pad [mm], load [N], rubber layer
+    ("S1", 10, 200.0, False),
+    ("S2", 10, 250.0, False),
+    ("S3_120N", 10, 120.0, False),
+    ("S3_70N", 10, 70.0, False),
+    ("S3_48N", 10, 48.0, False),
+    ("S3_45N", 10, 45.0, False),
+    ("S4", 8, 25.0, False),
+    ("S5", 10, 45.0, True),
+]
+
+
+def fitted(path):
+    with open(path) as f:
+        return {r["parameter"]: float(r["fitted"]) for r in csv.DictReader(f)}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("updated_parameters")
+    parser.add_argument("--out", help="folder (default prm/rig_predictions)")
+    args = parser.parse_args()
+    here = os.path.dirname(os.path.abspath(__file__))
+    out = args.out or os.path.normpath(
+        os.path.join(here, "..", "prm", "rig_predictions"))
+    os.makedirs(out, exist_ok=True)
+    p = fitted(args.updated_parameters)
+    k25, k225 = p.pop("pad on disc.k_n"), p.pop("pad on disc.k_n@225 N")
+    exponent = math.log(k225 / k25) / math.log(9.0)
+    for name, pad, load, rubber in CASES:
+        values = dict(p)
+        values["plates.k"] = p["plates.k"] * ROTATING_PLATES * (
+            RUBBER_PLATES if rubber else 1.0)
+        values["plates radial.k"] = p["plates.k"] * (
+            RUBBER_PLATES if rubber else 1.0)
+        k_n = k25 * (load / SUPPORT_WEIGHT) ** exponent
+        weights = (load - SUPPORT_WEIGHT) / G
+        mesh = os.path.relpath(
+            os.path.join(here, "..", "prm", f"rig_pad{pad:g}", "rig.msh"),
+            out)
+        header = (
+            f"# Squeal prediction {name} on the TriboBrake as built: "
+            f"{pad:g} x {pad:g} mm pad,\n# {load:g} N"
+            f"{', rubber layer' if rubber else ''}, mu swept 0 -> {MU:g},"
+            f" rotating state. Written by\n# scripts/rig_predictions.py "
+            f"from the fitted parameters (do not edit; rerun\n# it). "
+            f"k_n = {k_n:.6g} N/m^3 (power law, exponent {exponent:.4f}).\n"
+            f"# Run: build/squeal prm/rig_predictions/{name}.prm\n")
+        extra = {"support": f"alpha=0, beta={RUBBER_BETA:g}"} if rubber \
+            else None
+        text = scene_text(pad, mesh, values, header, extra)
+        text += f"""subsection Scene
+  set Analysis = cea
+end
+subsection Mesh
+  set Finite element degree = 3
+end
+subsection Interface
+  set Normal stiffness     = {k_n:.10g}
+  set Friction coefficient = {MU:g}
+end
+subsection Eigensolver
+  set Method            = reduced
+  set Minimum frequency = 300
+  set Maximum frequency = 16000
+end
+subsection Sweep
+  set First parameter  = pad on disc.mu
+  set First values     = linear 0 {MU:g} 7
+  set Second parameter = weights.m
+  set Second values    = {weights:.10g}
+end
+subsection Output
+  set Directory   = output/rig_predictions/{name}
+  set Mode shapes = unstable and first
+end
+"""
+        with open(os.path.join(out, name + ".prm"), "w") as f:
+            f.write(text)
+    print(f"rig_predictions.py: {len(CASES)} files in {out}; interface "
+          f"stiffness exponent {exponent:.4f}")
+
+
+if __name__ == "__main__":
+    main()
