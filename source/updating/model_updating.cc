@@ -406,12 +406,24 @@ namespace squeal
           Eigen::VectorXd       trial_x = x;
           for (unsigned int a = 0; a < nf; ++a)
             trial_x[unbound[a]] += dxf[a];
-          trial_x           = trial_x.cwiseMax(lo).cwiseMin(hi);
-          const double step = (trial_x - x).norm();
+          trial_x                    = trial_x.cwiseMax(lo).cwiseMin(hi);
+          const Eigen::VectorXd dx   = trial_x - x;
+          const double          step = dx.norm();
           if (step <= options.tolerance * (1. + x.norm()))
             {
               r.converged   = true;
               r.stop_reason = "step below tolerance";
+              break;
+            }
+          // the decrease the linearised model promises for the step: where
+          // it is below the tolerance the fit stands in a valley too flat
+          // to descend (a parameter the data barely determine, whose
+          // direction the damping hardly shortens)
+          const double predicted = -(g.dot(dx) + 0.5 * dx.dot(A * dx));
+          if (predicted <= options.tolerance * now.cost)
+            {
+              r.converged   = true;
+              r.stop_reason = "predicted cost decrease below tolerance";
               break;
             }
           ++trial;

@@ -48,11 +48,11 @@ namespace squeal
       /// `<parameter>@<configuration>` for one fitted separately in one
       /// configuration (`pad on disc.k_n@225 N`: the interface at a load)
       std::string name;
-      std::string scene_name;       ///< the model's parameter (`pad.E`)
-      std::string configuration;    ///< "" all, else the one it applies to
       double      lower     = 0.;   ///< lower bound [the parameter's unit]
       double      upper     = 0.;   ///< upper bound, > lower [unit]
       bool        log_scale = true; ///< fit x = ln p (needs lower > 0)
+      std::string scene_name;       ///< the model's parameter (`pad.E`)
+      std::string configuration;    ///< "" all, else the one it applies to
     };
 
     /** One measured mode. */
