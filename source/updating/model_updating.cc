@@ -355,9 +355,12 @@ namespace squeal
         *log << "Model updating: start cost " << now.cost << " at "
              << values_text(now.p) << std::endl;
 
-      double       damping = 1e-3;
-      unsigned int trial   = 0;
-      r.stop_reason        = "iteration limit";
+      double damping = 1e-3;
+      // the damping's growth on a rejected trial, doubled on each rejection
+      // in a row (H. B. Nielsen, IMM-REP-1999-05, DTU, 1999)
+      double       growth = 2.;
+      unsigned int trial  = 0;
+      r.stop_reason       = "iteration limit";
       while (r.iterations < options.max_iterations)
         {
           if (trial >= 3 * options.max_iterations + 10)
@@ -461,6 +464,7 @@ namespace squeal
               now                   = std::move(next);
               ++r.iterations;
               damping = std::max(damping / 3., 1e-12);
+              growth  = 2.;
               if (decrease <= options.tolerance * now.cost || now.cost <= 1e-30)
                 {
                   r.converged   = true;
@@ -470,7 +474,8 @@ namespace squeal
             }
           else
             {
-              damping *= 4.;
+              growth *= 2.;
+              damping *= growth;
               if (damping > 1e12)
                 {
                   r.converged   = true;
