@@ -4,6 +4,7 @@ TriboBrake as built (thesis sec. 4.3; ../shared/spec/rig_experiments.md)
 from the fitted parameters of prm/rig_updating.prm.
 
     scripts/rig_predictions.py UPDATED_PARAMETERS_CSV [--out DIR]
+    scripts/rig_predictions.py --summarise OUTPUT_DIR...
 
 writes DIR/<case>.prm (default DIR prm/rig_predictions), one CEA per squeal
 configuration, each sweeping the friction coefficient from 0 to the rig's
@@ -14,12 +15,19 @@ configuration's load:
 - S4: 8 x 8 mm pad, 25 N (the support alone);
 - S5: 10 x 10 mm pad, 45 N, a rubber layer between the plates and the
   support.
+--summarise prints, for each finished run, every unstable eigenvalue at
+mu = 0.3 (frequency, growth rate, name) and the two modes of the
+frictionless-limit point (mu = 0) that lock in: the unstable eigenvalue's
+track and the track of its stable twin (the eigenvalue nearest in
+frequency at the same point), each named at mu = 0.
 The model is the fitted one with these changes, each a stated assumption:
 - the weights: (F - 25 N) / g on the support's top (`weights.m`);
-- the interface stiffness at a load F: the power law through the two
-  fitted values, k_n(F) = k_n(25 N) (F / 25 N)^n with
-  n = ln(k_n(225 N) / k_n(25 N)) / ln 9 (a rough contact's stiffness grows
-  as a power of the load);
+- the interface stiffness at a load F: k_n(F) = k_n(25 N) (F / 25 N)^n,
+  with n = ln(k_n(225 N) / k_n(25 N)) / ln 9 through the two fitted values
+  where the fit could determine both, else n = 1 (a rough contact of
+  exponentially distributed asperity heights: stiffness proportional to
+  load; J. A. Greenwood and J. B. P. Williamson, Proc. R. Soc. A 295
+  (1966) 300-319);
 - the rotating state: the disc turning lowers the support frequencies by
   about 500 Hz (thesis sec. 4.2.3: one end of each plate is compressed),
   taken as the plates' tangential stiffness scaled by ROTATING_PLATES;
@@ -59,11 +67,52 @@ CASES = [  # name, pad [mm], load [N], rubber layer
 
 
 def fitted(path):
+    """{parameter: fitted value}, {parameter: identifiable}"""
     with open(path) as f:
-        return {r["parameter"]: float(r["fitted"]) for r in csv.DictReader(f)}
+        r = list(csv.DictReader(f))
+    return ({x["parameter"]: float(x["fitted"]) for x in r},
+            {x["parameter"]: x["identifiable"] == "1" for x in r})
+
+
+def rows(folder, name):
+    with open(os.path.join(folder, name)) as f:
+        return list(csv.DictReader(f))
+
+
+def summarise(folders):
+    for folder in folders:
+        eig = rows(folder, "eigenvalues.csv")
+        names = {(r["point"], r["mode"]): r["name"]
+                 for r in rows(folder, "mode_participation.csv")}
+        mu_col = [c for c in eig[0] if c.endswith(".mu")][0]
+        last = max(float(r[mu_col]) for r in eig)
+        first = min(float(r[mu_col]) for r in eig)
+        at = [r for r in eig if float(r[mu_col]) == last]
+        start = {r["track"]: r for r in eig if float(r[mu_col]) == first}
+        unstable = [r for r in at if r["unstable"] == "1"]
+        print(f"{os.path.basename(os.path.normpath(folder))}: "
+              f"{len(unstable)} unstable at mu = {last:g}")
+        for u in sorted(unstable, key=lambda r: float(r["freq_Hz"])):
+            twin = min((r for r in at if r is not u),
+                       key=lambda r: abs(float(r["freq_Hz"]) -
+                                         float(u["freq_Hz"])))
+
+            def origin(r):
+                s = start.get(r["track"])
+                if s is None:
+                    return "track starts later"
+                return (f"{float(s['freq_Hz']):.0f} Hz "
+                        f"{names.get((s['point'], s['mode']), '?')}")
+            print(f"  {float(u['freq_Hz']):.0f} Hz, growth "
+                  f"{float(u['re_per_s']):.3g} 1/s, "
+                  f"{names.get((u['point'], u['mode']), '?')}; lock-in of "
+                  f"[{origin(u)}] and [{origin(twin)}]")
 
 
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] == "--summarise":
+        summarise(sys.argv[2:])
+        return
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("updated_parameters")
     parser.add_argument("--out", help="folder (default prm/rig_predictions)")
@@ -72,9 +121,11 @@ def main():
     out = args.out or os.path.normpath(
         os.path.join(here, "..", "prm", "rig_predictions"))
     os.makedirs(out, exist_ok=True)
-    p = fitted(args.updated_parameters)
+    p, identifiable = fitted(args.updated_parameters)
     k25, k225 = p.pop("pad on disc.k_n"), p.pop("pad on disc.k_n@225 N")
-    exponent = math.log(k225 / k25) / math.log(9.0)
+    exponent = math.log(k225 / k25) / math.log(9.0) if (
+        identifiable["pad on disc.k_n"] and
+        identifiable["pad on disc.k_n@225 N"]) else 1.0
     for name, pad, load, rubber in CASES:
         values = dict(p)
         values["plates.k"] = p["plates.k"] * ROTATING_PLATES * (
@@ -92,7 +143,7 @@ def main():
             f"{', rubber layer' if rubber else ''}, mu swept 0 -> {MU:g},"
             f" rotating state. Written by\n# scripts/rig_predictions.py "
             f"from the fitted parameters (do not edit; rerun\n# it). "
-            f"k_n = {k_n:.6g} N/m^3 (power law, exponent {exponent:.4f}).\n"
+            f"k_n = {k_n:.6g} N/m^3 (load exponent {exponent:.4f}).\n"
             f"# Run: build/squeal prm/rig_predictions/{name}.prm\n")
         extra = {"support": f"alpha=0, beta={RUBBER_BETA:g}"} if rubber \
             else None
