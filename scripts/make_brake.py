@@ -104,6 +104,12 @@ class Mesh:
         self.cells = {}          # body -> [8 nodes]
         self.faces = {}          # face set -> [4 nodes]
 
+    def describe(self):
+        """'N nodes, M hexahedra <body> <count>, ...'"""
+        n_cells = sum(len(c) for c in self.cells.values())
+        return (f"{len(self.coords)} nodes, {n_cells} hexahedra " +
+                ", ".join(f"{b} {len(c)}" for b, c in self.cells.items()))
+
     def node(self, group, r, t, z):
         x, y = r * math.cos(t), r * math.sin(t)
         key = (group,) + tuple(round(c, 6) + 0.0 for c in (x, y, z))
@@ -389,10 +395,8 @@ def main():
     m, g = build(h)
     write_msh(m, os.path.join(out, "brake.msh"))
     write_scene(g, os.path.join(out, "brake_scene.prm"), "brake.msh")
-    n_cells = sum(len(c) for c in m.cells.values())
     print(f"make_brake.py: {out}/brake.msh and brake_scene.prm: "
-          f"{len(m.coords)} nodes, {n_cells} hexahedra "
-          + ", ".join(f"{b} {len(c)}" for b, c in m.cells.items()))
+          f"{m.describe()}")
 
 
 if __name__ == "__main__":

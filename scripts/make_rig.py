@@ -216,10 +216,7 @@ def main():
     write_msh(m, os.path.join(out, "rig.msh"))
     with open(os.path.join(out, "rig_scene.prm"), "w") as f:
         f.write(scene_text(args.pad, "rig.msh"))
-    n_cells = sum(len(c) for c in m.cells.values())
-    print(f"make_rig.py: {out}/rig.msh and rig_scene.prm: "
-          f"{len(m.coords)} nodes, {n_cells} hexahedra "
-          + ", ".join(f"{b} {len(c)}" for b, c in m.cells.items()))
+    print(f"make_rig.py: {out}/rig.msh and rig_scene.prm: {m.describe()}")
 
 
 if __name__ == "__main__":
