@@ -494,19 +494,6 @@ namespace squeal
             }
           configurations.push_back(c);
         }
-      for (const auto &q : parameters)
-        if (!q.configuration.empty() && std::none_of(configurations.begin(),
-                                                     configurations.end(),
-                                                     [&](const auto &c) {
-                                                       return c.name ==
-                                                              q.configuration;
-                                                     }))
-          throw std::runtime_error(
-            "Model updating/Parameters: " + q.name +
-            " names the "
-            "configuration '" +
-            q.configuration +
-            "', which is not one of Model updating/Configurations");
       model.varied          = varied;
       model.tie_constraints = contact::add_tie_constraints;
     }
