@@ -10,6 +10,12 @@
 //    side, and a gap varying as x gives pad forces whose moment
 //    sum_i x_i f_i equals k int_Gamma x^2 dA = k / 3, to 1e-12 (a nodal
 //    trapezoidal rule misses it; Simpson's, the nodal rule of degree 2, not).
+// 3. The tangential (shear) part K_st with k_s = 0.4 k on the same
+//    non-matching meshes: a unit in-plane translation of the pad stores
+//    u^T K_st u = k_s A (both rules), a rotation theta about the normal
+//    through the face's centre k_s theta^2 J with J = int r^2 dA = 1/6 (the
+//    polar moment of the unit square; mortar rule), to 1e-12; a normal
+//    translation and a rigid translation of both blocks store nothing.
 
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
@@ -76,7 +82,7 @@ namespace
     MappingQ<3>                                 mapping;
     DoFHandler<3>                               dofs;
     AffineConstraints<double>                   constraints;
-    PETScWrappers::MPI::SparseMatrix            K_n, K_t;
+    PETScWrappers::MPI::SparseMatrix            K_n, K_t, K_st;
     std::map<types::global_dof_index, Point<3>> where;
 
     Interface(const unsigned int  n_disc,
@@ -108,9 +114,12 @@ namespace
       const IndexSet all = complete_index_set(dofs.n_dofs());
       K_n.reinit(all, all, dsp, MPI_COMM_SELF);
       K_t.reinit(all, all, dsp, MPI_COMM_SELF);
-      physics::assemble_interface(points, constraints, k, pair, K_n, K_t);
+      K_st.reinit(all, all, dsp, MPI_COMM_SELF);
+      physics::assemble_interface(
+        points, constraints, k, 0.4 * k, pair, K_n, K_t, &K_st);
       K_n.compress(VectorOperation::add);
       K_t.compress(VectorOperation::add);
+      K_st.compress(VectorOperation::add);
       DoFTools::map_dofs_to_support_points(mapping, dofs, where);
     }
 
@@ -222,6 +231,62 @@ main(int argc, char **argv)
                 std::abs(moment + k / 3) > 1e-6 * k / 3,
                 1,
                 0);
+
+        // 3. the tangential part: energies u^T K_st u of rigid motions
+        const double k_s    = 0.4 * k;
+        const auto   energy = [&](const auto &motion) {
+          u = 0;
+          std::vector<types::global_dof_index> d(I.fe.n_dofs_per_cell());
+          for (const auto &cell : I.dofs.active_cell_iterators())
+            {
+              cell->get_dof_indices(d);
+              for (unsigned int i = 0; i < d.size(); ++i)
+                u(d[i]) = motion(I.where.at(d[i]),
+                                 I.fe.system_to_component_index(i).first,
+                                 cell->material_id() ==
+                                   scene::tribobrake::material::disc);
+            }
+          u.compress(VectorOperation::insert);
+          I.K_st.vmult(f, u);
+          return u * f;
+        };
+        check(tag + "pad translated in x by 1: u^T K_st u = k_s A",
+              energy([](const Point<3> &, unsigned int c, bool disc) {
+                return !disc && c == 0 ? 1. : 0.;
+              }),
+              k_s,
+              1e-12);
+        check(tag + "pad translated in y by 1: u^T K_st u = k_s A",
+              energy([](const Point<3> &, unsigned int c, bool disc) {
+                return !disc && c == 1 ? 1. : 0.;
+              }),
+              k_s,
+              1e-12);
+        check(tag + "pad translated in z: no shear energy",
+              energy([](const Point<3> &, unsigned int c, bool disc) {
+                return !disc && c == 2 ? 1. : 0.;
+              }),
+              0.,
+              1e-12,
+              k_s);
+        check(tag + "both blocks translated in x: no shear energy",
+              energy([](const Point<3> &, unsigned int c, bool) {
+                return c == 0 ? 1. : 0.;
+              }),
+              0.,
+              1e-12,
+              k_s);
+        const double theta = 1e-3;
+        if (rule == "mortar")
+          check(tag + "pad turned about the normal: k_s theta^2 / 6",
+                energy([&](const Point<3> &p, unsigned int c, bool disc) {
+                  return disc   ? 0. :
+                         c == 0 ? -theta * (p[1] - 0.5) :
+                         c == 1 ? theta * (p[0] - 0.5) :
+                                  0.;
+                }),
+                k_s * theta * theta / 6,
+                1e-12);
       }
   return test_tools::finish();
 }

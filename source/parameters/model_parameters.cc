@@ -257,6 +257,17 @@ namespace squeal
                                          Patterns::Double::max_double_value),
                         "Normal interface stiffness per unit area [N/m^3]; "
                         "the thesis' 2.5895e8 N/m over 1e-4 m^2.");
+      prm.declare_entry(
+        "Tangential stiffness",
+        str(tangential_stiffness),
+        Patterns::Double(0., Patterns::Double::max_double_value),
+        "Tangential (shear) interface stiffness per unit area [N/m^3] of the "
+        "CEA's coupling: a traction k_t (u_disc - u_pad) on the in-plane "
+        "relative displacement, the contact layer's elastic shear (its "
+        "asperities' Mindlin stiffness), which holds the pad in the plane "
+        "beside the sliding friction force mu k_n g. 0: none (thesis eq. "
+        "3-1). Named parameter <pair>.k_t; not used by the static preload "
+        "(full slip) nor the braking run.");
       prm.declare_entry("Friction coefficient",
                         str(friction_coefficient),
                         Patterns::Double(0., 10.),
@@ -287,6 +298,7 @@ namespace squeal
     {
       prm.enter_subsection("Interface");
       normal_stiffness     = prm.get_double("Normal stiffness");
+      tangential_stiffness = prm.get_double("Tangential stiffness");
       friction_coefficient = prm.get_double("Friction coefficient");
       sliding_direction    = prm.get("Sliding direction");
       rotation_sense       = prm.get("Rotation sense");

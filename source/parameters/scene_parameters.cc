@@ -70,13 +70,14 @@ namespace squeal
         contact_pairs,
         Patterns::Anything(),
         "name: slave=<face set>, master=<face set>[, sliding=tx ty tz, "
-        "mu=<friction coefficient>, k_n=<N/m^3>]; the "
+        "mu=<friction coefficient>, k_n=<N/m^3>, k_t=<N/m^3>]; the "
         "slave face set must be plane (the pad's friction face), the master "
         "(the disc's face) in reach of it. Without sliding, the master turns "
-        "about the disc's axis in Interface/Rotation sense. mu and k_n "
-        "default to Interface/Friction coefficient and Normal stiffness; "
-        "named parameters <name>.mu and <name>.k_n, and with two or more "
-        "pairs contact.mu, which sets every pair's mu at once.");
+        "about the disc's axis in Interface/Rotation sense. mu, k_n and k_t "
+        "default to Interface/Friction coefficient, Normal stiffness and "
+        "Tangential stiffness; named parameters <name>.mu, <name>.k_n and "
+        "<name>.k_t, and with two or more pairs contact.mu, which sets every "
+        "pair's mu at once.");
       prm.declare_entry(
         "Ties",
         ties,

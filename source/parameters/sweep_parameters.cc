@@ -187,7 +187,8 @@ namespace squeal
         "(density, kg/m^3), '<pair>.mu' (friction "
         "coefficient; 'contact.mu' sets every pair's at "
         "once), '<pair>.k_n' (interface stiffness, "
-        "N/m^3), '<springs>.k' (N/m per spring), '<mass>.m' "
+        "N/m^3), '<pair>.k_t' (tangential interface stiffness, N/m^3), "
+        "'<springs>.k' (N/m per spring), '<mass>.m' "
         "(a lumped mass, kg), 'damping.alpha' (1/s), 'damping.beta' (s), "
         "'<body>.alpha', '<body>.beta' (a body with its own "
         "Rayleigh damping). squeal --validate lists them.");

@@ -267,9 +267,11 @@ namespace squeal
     assemble_interface(const std::vector<CouplingPoint> &points,
                        const AffineConstraints<double>  &constraints,
                        const double                      k,
+                       const double                      k_s,
                        const scene::ContactPair         &pair,
                        PETScWrappers::MPI::SparseMatrix &K_n,
-                       PETScWrappers::MPI::SparseMatrix &K_t)
+                       PETScWrappers::MPI::SparseMatrix &K_t,
+                       PETScWrappers::MPI::SparseMatrix *K_st)
     {
       // Points come grouped by (pad cell, disc cell) pair: accumulate each
       // pair's local matrices and distribute them once.
@@ -279,8 +281,11 @@ namespace squeal
       const Tensor<1, 3> &normal  = pair.normal;
       const auto         &fe      = points[0].pad_cell->get_fe();
       const unsigned int  n       = fe.n_dofs_per_cell();
-      FullMatrix<double>  local_n(2 * n, 2 * n), local_t(2 * n, 2 * n);
-      std::vector<double> g(2 * n), f(2 * n);
+      FullMatrix<double>  local_n(2 * n, 2 * n), local_t(2 * n, 2 * n),
+        local_s(2 * n, 2 * n);
+      std::vector<double>                g(2 * n), f(2 * n);
+      std::array<std::vector<double>, 2> h{
+        {std::vector<double>(2 * n), std::vector<double>(2 * n)}};
       std::vector<types::global_dof_index> dofs(2 * n), d(n);
 
       const auto flush = [&](const CouplingPoint &p) {
@@ -290,8 +295,11 @@ namespace squeal
         std::copy(d.begin(), d.end(), dofs.begin() + n);
         constraints.distribute_local_to_global(local_n, dofs, K_n);
         constraints.distribute_local_to_global(local_t, dofs, K_t);
+        if (K_st)
+          constraints.distribute_local_to_global(local_s, dofs, *K_st);
         local_n = 0;
         local_t = 0;
+        local_s = 0;
       };
 
       for (unsigned int q = 0; q < points.size(); ++q)
@@ -309,15 +317,25 @@ namespace squeal
               g[n + i]              = normal[c] * vd;
               f[i]                  = -tangent[c] * vp;
               f[n + i]              = tangent[c] * vd;
+              // h_a: in-plane relative displacement (u(disc) - u(pad)) . a
+              for (unsigned int a = 0; a < 2; ++a)
+                {
+                  h[a][i]     = -pair.plane_axes[a][c] * vp;
+                  h[a][n + i] = pair.plane_axes[a][c] * vd;
+                }
             }
-          const double kw = k * p.weight;
+          const double kw = k * p.weight, sw = k_s * p.weight;
           for (unsigned int i = 0; i < 2 * n; ++i)
             for (unsigned int j = 0; j < 2 * n; ++j)
-              if (g[j] != 0.)
-                {
-                  local_n(i, j) += kw * g[i] * g[j];
-                  local_t(i, j) += kw * f[i] * g[j];
-                }
+              {
+                if (g[j] != 0.)
+                  {
+                    local_n(i, j) += kw * g[i] * g[j];
+                    local_t(i, j) += kw * f[i] * g[j];
+                  }
+                if (K_st)
+                  local_s(i, j) += sw * (h[0][i] * h[0][j] + h[1][i] * h[1][j]);
+              }
           const bool last = q + 1 == points.size() ||
                             points[q + 1].pad_cell != p.pad_cell ||
                             points[q + 1].disc_cell != p.disc_cell;

@@ -562,10 +562,22 @@ namespace squeal
       for (unsigned int i = 0; i < pair_points.size(); ++i)
         {
           const scene::ContactPair &pair = scene->contact_pairs[i];
-          const std::string         k_n  = pair.name + ".k_n";
-          PETScMatrix &Kn = new_part_matrix(), &Kt = new_part_matrix();
-          assemble_interface(
-            pair_points[i], constraints, reference_of(k_n), pair, Kn, Kt);
+          const std::string k_n = pair.name + ".k_n", k_t = pair.name + ".k_t";
+          PETScMatrix      &Kn = new_part_matrix(), &Kt = new_part_matrix();
+          // the shear part only where it is or may become nonzero: else it
+          // would add an empty term to every product
+          PETScMatrix *Kst = pair.tangential_stiffness > 0. || !varied ||
+                                 varied->count(k_t) > 0 ?
+                               &new_part_matrix() :
+                               nullptr;
+          assemble_interface(pair_points[i],
+                             constraints,
+                             reference_of(k_n),
+                             reference_of(k_t),
+                             pair,
+                             Kn,
+                             Kt,
+                             Kst);
           Kn.compress(VectorOperation::add);
           Kt.compress(VectorOperation::add);
           parts.parts.push_back({&Kn,
@@ -584,6 +596,18 @@ namespace squeal
                                  pair.name + ".mu",
                                  "",
                                  false});
+          if (Kst)
+            {
+              Kst->compress(VectorOperation::add);
+              parts.parts.push_back({Kst,
+                                     MatrixParts::Kind::interface_normal,
+                                     "tangential interface " + pair.name,
+                                     k_t,
+                                     reference_of(k_t),
+                                     "",
+                                     "",
+                                     false});
+            }
         }
       part_matrices.resize(next_part);
       pattern.reset();

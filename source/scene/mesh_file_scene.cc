@@ -541,7 +541,7 @@ namespace squeal
       for (const Item &item :
            parse_list("Contact pairs",
                       mf.contact_pairs,
-                      {"slave", "master", "sliding", "mu", "k_n"}))
+                      {"slave", "master", "sliding", "mu", "k_n", "k_t"}))
         {
           ContactPair pair;
           pair.name = item.name;
@@ -549,11 +549,15 @@ namespace squeal
             item.number("mu", prm.interface.friction_coefficient);
           pair.normal_stiffness =
             item.number("k_n", prm.interface.normal_stiffness);
+          pair.tangential_stiffness =
+            item.number("k_t", prm.interface.tangential_stiffness);
           if (!(pair.friction_coefficient >= 0. &&
                 pair.friction_coefficient <= 10.) ||
-              !(pair.normal_stiffness >= 0.))
-            throw std::runtime_error(
-              item.where() + ": need 0 <= mu <= 10 and k_n >= 0 [N/m^3]");
+              !(pair.normal_stiffness >= 0.) ||
+              !(pair.tangential_stiffness >= 0.))
+            throw std::runtime_error(item.where() +
+                                     ": need 0 <= mu <= 10, k_n >= 0 and "
+                                     "k_t >= 0 [N/m^3]");
           pair.slave  = face_id(item, item.text("slave"));
           pair.master = face_id(item, item.text("master"));
           if (pair.slave == pair.master)

@@ -146,6 +146,13 @@ namespace squeal
                           false,
                           k_n_max,
                           false});
+          list.push_back({c.name + ".k_t",
+                          "N_per_m3",
+                          c.tangential_stiffness,
+                          0.,
+                          false,
+                          k_n_max,
+                          false});
         }
       if (contact_pairs.size() > 1) // links(): every pair's mu at once
         list.push_back({"contact.mu",
@@ -209,7 +216,9 @@ namespace squeal
           }
       for (ContactPair &c : contact_pairs)
         if (c.name == item)
-          (key == "mu" ? c.friction_coefficient : c.normal_stiffness) = value;
+          (key == "mu"  ? c.friction_coefficient :
+           key == "k_n" ? c.normal_stiffness :
+                          c.tangential_stiffness) = value;
       for (SpringSet &k : springs)
         if (k.name == item)
           k.stiffness = value;
@@ -460,6 +469,7 @@ namespace squeal
           pair.size                 = g.pad_size;
           pair.friction_coefficient = prm.interface.friction_coefficient;
           pair.normal_stiffness     = prm.interface.normal_stiffness;
+          pair.tangential_stiffness = prm.interface.tangential_stiffness;
           contact_pairs.push_back(pair);
 
           // the loading arm holds the support top's centre along the radius

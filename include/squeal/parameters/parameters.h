@@ -225,7 +225,10 @@ namespace squeal
     /** Linear friction coupling of the CEA (thesis eq. 3-1). */
     struct Interface
     {
-      double      normal_stiffness     = 2.5895e12;  ///< N/m^3 per unit area
+      double normal_stiffness = 2.5895e12; ///< N/m^3 per unit area
+      /// tangential (shear) stiffness per unit area [N/m^3] on the in-plane
+      /// relative displacement; 0 (default) for none
+      double      tangential_stiffness = 0.;
       double      friction_coefficient = 0.3;        ///< when not swept [-]
       std::string sliding_direction    = "rotation"; ///< `rotation` or "tx, ty"
       std::string rotation_sense =
@@ -520,7 +523,8 @@ namespace squeal
       /// targets may name (values of parameters that are not fitted)
       std::string configurations;
       double      measurement_error = 0.01; ///< relative std of a frequency [-]
-      unsigned int max_iterations   = 30;   ///< Levenberg-Marquardt steps
+      double      damping_error = 0.2;  ///< relative std of a damping ratio [-]
+      unsigned int max_iterations = 30; ///< Levenberg-Marquardt steps
       /// stop when a step lowers the cost by less than this fraction [-]
       double tolerance        = 1e-5;
       double mac_threshold    = 0.6; ///< least MAC of a pairing by shape

@@ -13,7 +13,10 @@
  *   K_n = int_Gamma k (n.N_d - n.N_p)^T (n.N_d - n.N_p) dA        (symmetric)
  *   K_t = int_Gamma k (t.N_d - t.N_p)^T (n.N_d - n.N_p) dA        (not)
  * Both faces lie in one plane, the pair's (scene::ContactPair: its normal,
- * in-plane axes and sliding direction t).
+ * in-plane axes and sliding direction t). A tangential (shear) stiffness
+ * k_s of the contact layer adds the symmetric
+ *   K_s,t = int_Gamma k_s sum_a (a.N_d - a.N_p)^T (a.N_d - a.N_p) dA
+ * over the two in-plane axes a (zero unless k_s > 0: eq. 3-1 has none).
  */
 
 #include <deal.II/base/point.h>
@@ -74,18 +77,24 @@ namespace squeal
                            dealii::DynamicSparsityPattern          &dsp);
 
     /**
-     * Assembles K_n and K_t (per unit mu) of the header into the two matrices
-     * (added; call compress afterwards).
+     * Assembles K_n, K_t (per unit mu) and the tangential K_s,t of the
+     * header into the three matrices, each n_dofs x n_dofs on the
+     * interface's sparsity (added; call compress afterwards).
      * @param normal_stiffness interface stiffness per area k [N/m^3]
-     * @param pair its normal n and sliding direction t (unit vectors)
+     * @param tangential_stiffness shear stiffness per area k_s [N/m^3]
+     * @param pair its normal n, in-plane axes and sliding direction t (unit
+     * vectors)
+     * @param K_st the tangential part, or nullptr to skip it
      */
     void
     assemble_interface(const std::vector<CouplingPoint>        &points,
                        const dealii::AffineConstraints<double> &constraints,
                        const double              normal_stiffness,
+                       const double              tangential_stiffness,
                        const scene::ContactPair &pair,
                        dealii::PETScWrappers::MPI::SparseMatrix &K_n,
-                       dealii::PETScWrappers::MPI::SparseMatrix &K_t);
+                       dealii::PETScWrappers::MPI::SparseMatrix &K_t,
+                       dealii::PETScWrappers::MPI::SparseMatrix *K_st);
   } // namespace physics
 } // namespace squeal
 

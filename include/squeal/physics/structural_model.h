@@ -89,9 +89,11 @@ namespace squeal
       /** What a part is. */
       enum class Kind
       {
-        mass,               ///< enters M (and C through alpha) [kg]
-        stiffness,          ///< enters K_s, K (and C through beta) [N/m]
-        interface_normal,   ///< a pair's K_n at its k_n,ref [N/m]
+        mass,      ///< enters M (and C through alpha) [kg]
+        stiffness, ///< enters K_s, K (and C through beta) [N/m]
+        /// a pair's K_n at its k_n,ref, or its tangential (shear) part at
+        /// k_t,ref: enters K_s + K_n and K, not K_s [N/m]
+        interface_normal,
         interface_friction, ///< a pair's K_t per unit mu at k_n,ref [N/m]
       };
       /** One assembled part. */
@@ -298,7 +300,9 @@ namespace squeal
        * when its `.E` or `.rho` is listed (or it has its own damping); the
        * others are summed into common parts at their nominal values. Set
        * it before setup_and_assemble(); unset (the default) varies every
-       * parameter. The interface and spring parts always vary.
+       * parameter. The interface and spring parts always vary, except a
+       * pair's tangential part: it exists only when its `.k_t` is nonzero
+       * or listed.
        */
       std::optional<std::set<std::string>> varied;
 

@@ -137,6 +137,11 @@ namespace squeal
       /// normal interface stiffness per area of the CEA's linear coupling
       /// [N/m^3] (named parameter `<name>.k_n`)
       double normal_stiffness = 0.;
+      /// tangential (shear) interface stiffness per area of the CEA's
+      /// linear coupling [N/m^3] (named parameter `<name>.k_t`): the contact
+      /// layer's elastic shear on the in-plane relative displacement; 0
+      /// leaves the pad free to slide in the plane
+      double tangential_stiffness = 0.;
 
       /** The unit radial direction from the axis to the centre. */
       dealii::Tensor<1, 3>
@@ -257,8 +262,9 @@ namespace squeal
      * A named scalar parameter of a scene: what a sweep varies (and model
      * updating calibrates). Its name is built from the scene's items:
      * `<body>.E` [Pa], `<body>.rho` [kg/m^3], `<pair>.mu` [-],
-     * `<pair>.k_n` [N/m^3], `<springs>.k` [N/m], `<mass>.m` [kg] (a
-     * lumped mass), `damping.alpha` [1/s], `damping.beta` [s],
+     * `<pair>.k_n` [N/m^3], `<pair>.k_t` [N/m^3], `<springs>.k` [N/m],
+     * `<mass>.m` [kg] (a lumped mass), `damping.alpha` [1/s], `damping.beta`
+     * [s],
      * `<body>.alpha`, `<body>.beta` (a body with its own damping).
      */
     struct NamedParameter
@@ -323,8 +329,9 @@ namespace squeal
       /**
        * The named parameters of the scene with their nominal values, in
        * this order: per body `.E`, `.rho` (and `.alpha`, `.beta` with its
-       * own damping), per contact pair `.mu`, `.k_n`, per spring set `.k`,
-       * then `damping.alpha`, `damping.beta`.
+       * own damping), per contact pair `.mu`, `.k_n`, `.k_t` (and
+       * `contact.mu` with two or more pairs), per spring set `.k`, per
+       * lumped mass `.m`, then `damping.alpha`, `damping.beta`.
        * @throws std::runtime_error if two items give the same name.
        */
       std::vector<NamedParameter>
