@@ -22,7 +22,12 @@
 //     the springs recovered within 3 deviations; a disc mode's name without
 //     its sign matches both signs;
 //  5. bad input: a target no mode pairs with is named in the error; bad
-//     bounds are named.
+//     bounds are named; a damping target for a model that gives no damping
+//     ratio, and a ratio outside [0, 1), are refused;
+//  6. damping ratios as targets: the chain with Rayleigh damping (zeta_k =
+//     alpha / 2 omega_k + beta omega_k / 2) recovers a spring, alpha and
+//     beta within 3 deviations from frequencies (0.1 % noise) and ratios
+//     (2 % noise).
 
 #include <squeal/updating/model_updating.h>
 
@@ -374,6 +379,74 @@ main(int argc, char **argv)
                               }),
                               {"parameter k1 has bounds [0, 1e+08]",
                                "lower > 0 (log scale)"});
+    targets[0].name          = "";
+    targets[0].damping_ratio = 0.01;
+    test_tools::check_message(
+      "bad input: a damping target for a model without damping",
+      test_tools::error_of([&] {
+        updating::update(
+          one_spring, {{"k1", 1e4, 1e8, true}}, {1e6}, targets, options);
+      }),
+      {"target 'mode 1' has a damping ratio, but the model gives none"});
+    targets[0].damping_ratio = 1.5;
+    test_tools::check_message("bad input: a damping ratio of 1.5",
+                              test_tools::error_of([&] {
+                                updating::update(one_spring,
+                                                 {{"k1", 1e4, 1e8, true}},
+                                                 {1e6},
+                                                 targets,
+                                                 options);
+                              }),
+                              {"target 'mode 1'", "a damping ratio in [0, 1)"});
+  }
+
+  // 6. damping ratios as targets: the chain with Rayleigh damping C =
+  // alpha M + beta K, zeta_k = alpha / (2 omega_k) + beta omega_k / 2
+  // (exact for proportional damping); k1, alpha and beta hidden, the
+  // frequencies with 0.1 % and the ratios with 2 % noise
+  {
+    const auto damped = [&](const std::vector<double> &p) {
+      auto modes = model({p[0], 2e6, 1.5e6, 1e6, 2.});
+      for (unsigned int k = 0; k < modes.frequency.size(); ++k)
+        {
+          const double w  = 2 * M_PI * modes.frequency[k];
+          const double dw = 2 * M_PI * modes.derivative[k][0];
+          const double a = p[1], b = p[2];
+          modes.derivative[k].assign({modes.derivative[k][0], 0., 0.});
+          modes.damping_ratio.push_back(a / (2 * w) + b * w / 2);
+          modes.damping_derivative.push_back(
+            {(-a / (2 * w * w) + b / 2) * dw, 1. / (2 * w), w / 2});
+        }
+      return modes;
+    };
+    const std::vector<double> hidden{1.3e6, 20., 2e-5};
+    auto                      targets = targets_of(damped(hidden), 1e-3, false);
+    const auto                exact   = damped(hidden);
+    unsigned int              state   = 777;
+    for (unsigned int k = 0; k < targets.size(); ++k)
+      targets[k].damping_ratio =
+        exact.damping_ratio[k] * (1. + 0.02 * noise(state));
+    updating::Options o = options;
+    o.damping_error     = 0.02;
+    const std::vector<updating::Parameter> parameters{
+      {"k1", 1e4, 1e8, true},
+      {"alpha", 1e-2, 1e4, true},
+      {"beta", 1e-9, 1e-2, true}};
+    const auto result =
+      updating::update(damped, parameters, {1e6, 1., 1e-6}, targets, o);
+    check_true("damping targets: converged", result.converged);
+    for (unsigned int j = 0; j < 3; ++j)
+      check("damping targets: " + parameters[j].name +
+              " within 3 deviations, deviation below 10 %",
+            std::abs(result.value[j] - hidden[j]) <=
+                3 * result.standard_deviation[j] &&
+              result.standard_deviation[j] < 0.1 * hidden[j],
+            1.,
+            0.);
+    check("damping targets: cost down to the noise's (below 4 per target)",
+          result.cost < 4. * targets.size(),
+          1.,
+          0.);
   }
   return test_tools::finish();
 }

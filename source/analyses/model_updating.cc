@@ -10,6 +10,7 @@
 #include <squeal/analyses/model_updating.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/modal_contribution.h>
+#include <squeal/eigen/qep_solver.h>
 #include <squeal/eigen/sensitivity.h>
 #include <squeal/io/output_directory.h>
 
@@ -230,7 +231,8 @@ namespace squeal
       };
       const int label = column("label"), frequency = column("frequency_Hz"),
                 weight = column("weight"), name = column("name"),
-                configuration = column("configuration");
+                configuration = column("configuration"),
+                damping       = column("damping_ratio");
       const int n_columns     = header.size();
       if (label == n_columns || frequency == n_columns)
         throw std::runtime_error("Model updating/Targets file '" + file +
@@ -271,6 +273,16 @@ namespace squeal
             t.weight = number_of(f[weight], file, number, "weight");
           if (name < n_columns)
             t.name = f[name];
+          if (damping < n_columns && !f[damping].empty())
+            {
+              t.damping_ratio =
+                number_of(f[damping], file, number, "damping_ratio");
+              if (!(t.damping_ratio > 0. && t.damping_ratio < 1.))
+                throw std::runtime_error(at +
+                                         ": damping_ratio must lie in (0, 1) "
+                                         "(a ratio, not a percentage), or "
+                                         "be empty");
+            }
           if (configuration < n_columns && !f[configuration].empty())
             {
               unsigned int c = 0;
@@ -546,28 +558,58 @@ namespace squeal
             // parts' quadratic forms q_k = phi^T A_k phi (0 for a parameter
             // that does not act in c)
             const auto slope = eigen::coefficient_slopes(parts, p, names);
+            const auto coeff = parts.coefficients(p);
             std::vector<bool> needed(parts.size(), false);
             for (const auto &d : slope)
               for (unsigned int k = 0; k < parts.size(); ++k)
                 needed[k] = needed[k] || d.mass[k] != 0. ||
-                            d.symmetric_stiffness[k] != 0.;
+                            d.symmetric_stiffness[k] != 0. ||
+                            (with_damping &&
+                             (d.damping[k] != 0. || coeff.damping[k] != 0.));
             if (modes.shape.empty())
               continue;
+            const unsigned int   n_modes = modes.frequency.size();
             physics::PETScVector Aphi(modes.shape[0]), zero(modes.shape[0]);
             zero = 0.;
-            for (unsigned int m = 0; m < modes.frequency.size(); ++m)
+            // damping: G = Phi^T C Phi and, per mode and parameter, the
+            // first-order change of the shape (below)
+            Eigen::MatrixXd                   G;
+            std::vector<physics::PETScVector> y; // K^-1 C phi_m
+            if (with_damping)
+              {
+                physics::PETScMatrix C, K;
+                parts.combine(coeff.damping, C);
+                parts.combine(coeff.symmetric_stiffness, K);
+                const eigen::DirectSolver static_solver(K, true);
+                G.resize(n_modes, n_modes);
+                for (unsigned int m = 0; m < n_modes; ++m)
+                  {
+                    C.vmult(Aphi, modes.shape[m]);
+                    for (unsigned int l = 0; l <= m; ++l)
+                      G(l, m) = G(m, l) = modes.shape[l] * Aphi;
+                    y.emplace_back(Aphi);
+                    static_solver.solve(Aphi, y.back());
+                  }
+              }
+            for (unsigned int m = 0; m < n_modes; ++m)
               {
                 const auto         &phi = modes.shape[m];
                 const double        f   = modes.frequency[m];
                 const double        w2  = std::pow(2 * M_PI * f, 2);
                 std::vector<double> q(parts.size(), 0.);
+                // A_k phi for the parts a parameter's stiffness or mass acts
+                // in (the shape derivative needs them whole)
+                std::vector<std::optional<physics::PETScVector>> A_phi(
+                  parts.size());
                 for (unsigned int k = 0; k < parts.size(); ++k)
                   if (needed[k])
                     {
                       parts.matrix(k).vmult(Aphi, phi);
                       q[k] = phi * Aphi;
+                      if (with_damping)
+                        A_phi[k] = Aphi;
                     }
-                std::vector<double> d;
+                std::vector<double> d, dzeta;
                 for (const int j : column)
                   {
                     double dw2 = 0.;
@@ -578,6 +620,61 @@ namespace squeal
                                   w2 * slope[j].mass[k]) *
                                  q[k];
                     d.push_back(f > 0. ? dw2 / (8 * M_PI * M_PI * f) : 0.);
+                    if (!with_damping)
+                      continue;
+                    // zeta_m = phi_m^T C phi_m / (2 omega_m): its derivative
+                    // from C's own slope, from omega_m and from the shape,
+                    // d phi_m = sum_l a_lm phi_l - (phi_m^T M' phi_m / 2)
+                    // phi_m, a_lm = phi_l^T F / (omega_m^2 - omega_l^2), F =
+                    // (K' - omega_m^2 M') phi_m (R.L. Fox, M.P. Kapoor, AIAA
+                    // J. 6 (1968), eq. 13), over the computed modes (l of a
+                    // repeated frequency left out: the shape within a
+                    // doublet is arbitrary), and the modes above them in
+                    // their static limit, -(K^-1 - sum_l phi_l phi_l^T /
+                    // omega_l^2) F (B.P. Wang, AIAA J. 29 (1991) 1018-1020:
+                    // a stiffness-proportional C makes the truncated sum
+                    // converge slowly, and this correction carries the rest)
+                    const double w  = std::sqrt(w2);
+                    double       dc = 0., shape = 0.;
+                    if (j >= 0 && w > 0.)
+                      {
+                        physics::PETScVector v(phi);
+                        v          = 0.;
+                        double m_q = 0.;
+                        for (unsigned int k = 0; k < parts.size(); ++k)
+                          if (needed[k])
+                            {
+                              dc += slope[j].damping[k] * q[k];
+                              m_q += slope[j].mass[k] * q[k];
+                              const double a = slope[j].symmetric_stiffness[k] -
+                                               w2 * slope[j].mass[k];
+                              if (a != 0.)
+                                v.add(a, *A_phi[k]);
+                            }
+                        double computed = 0.;
+                        for (unsigned int l = 0; l < n_modes; ++l)
+                          {
+                            const double wl2 =
+                              std::pow(2 * M_PI * modes.frequency[l], 2);
+                            const double lF = modes.shape[l] * v;
+                            if (l != m && std::abs(w2 - wl2) > 1e-6 * w2)
+                              shape += lF / (w2 - wl2) * G(m, l);
+                            if (wl2 > 0.)
+                              computed += G(m, l) * lF / wl2;
+                          }
+                        shape += computed - y[m] * v;
+                        shape -= 0.5 * m_q * G(m, m);
+                      }
+                    const double zeta = w > 0. ? G(m, m) / (2 * w) : 0.;
+                    dzeta.push_back(w > 0. ? (dc + 2 * shape) / (2 * w) -
+                                               zeta * dw2 / (2 * w2) :
+                                             0.);
+                  }
+                if (with_damping)
+                  {
+                    result.damping_ratio.push_back(
+                      w2 > 0. ? G(m, m) / (2 * std::sqrt(w2)) : 0.);
+                    result.damping_derivative.push_back(std::move(dzeta));
                   }
                 result.frequency.push_back(f);
                 result.derivative.push_back(std::move(d));
@@ -607,7 +704,11 @@ namespace squeal
                                                 configurations.end()));
       used.assign(configurations.size(), false);
       for (const auto &t : targets)
-        used[t.configuration] = true;
+        {
+          used[t.configuration] = true;
+          with_damping          = with_damping || t.damping_ratio > 0.;
+        }
+
       {
         TimerOutput::Scope t(timer, "setup and assembly");
         work_dir = io::start_work_directory(prm.output.directory,
@@ -620,7 +721,10 @@ namespace squeal
         double highest = 0.;
         for (const auto &t : targets)
           highest = std::max(highest, t.frequency);
-        f_max = u.maximum_frequency > 0. ? u.maximum_frequency : 1.5 * highest;
+        // damping ratios' shape derivatives take the modes above f_max in
+        // their static limit: an error of order (f / f_max)^2 of that part
+        f_max = u.maximum_frequency > 0. ? u.maximum_frequency :
+                                           (with_damping ? 2.5 : 1.5) * highest;
         if (!(f_max > highest))
           throw std::runtime_error(
             "Model updating/Maximum frequency = " + std::to_string(f_max) +
@@ -637,6 +741,7 @@ namespace squeal
 
       updating::Options options;
       options.measurement_error = u.measurement_error;
+      options.damping_error     = u.damping_error;
       options.max_iterations    = u.max_iterations;
       options.tolerance         = u.tolerance;
       options.mac_threshold     = u.mac_threshold;
@@ -692,6 +797,18 @@ namespace squeal
                 << 100 * (f - targets[i].frequency) / targets[i].frequency
                 << std::endl;
         }
+      if (with_damping)
+        {
+          pcout << "  measured mode  damping ratio  model start  model fitted"
+                << std::endl;
+          for (unsigned int i = 0; i < targets.size(); ++i)
+            if (targets[i].damping_ratio > 0.)
+              pcout << "  " << targets[i].label << "  "
+                    << targets[i].damping_ratio << "  "
+                    << r.initial_modes.damping_ratio[r.initial_pairing.mode[i]]
+                    << "  " << r.modes.damping_ratio[r.pairing.mode[i]]
+                    << std::endl;
+        }
       // the files on rank 0; a failure there reaches every rank, so that
       // none waits for the others
       std::string failure;
@@ -736,7 +853,11 @@ namespace squeal
       tg
         << "label,name,configuration,measured_Hz,weight,initial_mode,initial_Hz,"
            "initial_name,initial_error_percent,initial_mac,mode,model_Hz,"
-           "model_name,error_percent,mac,residual_in_sigma\n"
+           "model_name,error_percent,mac,residual_in_sigma"
+        << (with_damping ? ",measured_damping_ratio,initial_damping_ratio,"
+                           "model_damping_ratio,damping_residual_in_sigma" :
+                           "")
+        << '\n'
         << std::setprecision(10);
       for (unsigned int i = 0; i < targets.size(); ++i)
         {
@@ -753,13 +874,48 @@ namespace squeal
              << quoted(r.modes.name[k]) << ','
              << 100 * (f - t.frequency) / t.frequency << ',' << r.pairing.mac[i]
              << ','
-             << std::sqrt(t.weight) * (f - t.frequency) / (sigma * t.frequency)
-             << '\n';
+             << std::sqrt(t.weight) * (f - t.frequency) / (sigma * t.frequency);
+          // the damping ratios (empty where none was measured)
+          if (with_damping && t.damping_ratio > 0.)
+            tg << ',' << t.damping_ratio << ','
+               << r.initial_modes.damping_ratio[k0] << ','
+               << r.modes.damping_ratio[k] << ','
+               << std::sqrt(t.weight) *
+                    (r.modes.damping_ratio[k] - t.damping_ratio) /
+                    (prm.updating.damping_error * t.damping_ratio);
+          else if (with_damping)
+            tg << ",,,,";
+          tg << '\n';
+        }
+
+      // the sensitivities of the paired modes at the fitted point: what
+      // the Jacobian is made of, per unit of each parameter
+      io::OutputFile jc(work_dir + "/sensitivities.csv");
+      jc << "label,mode,quantity,value";
+      for (const auto &q : parameters)
+        jc << ',' << quoted("d/d " + q.name);
+      jc << '\n' << std::setprecision(10);
+      for (unsigned int i = 0; i < targets.size(); ++i)
+        {
+          const int k = r.pairing.mode[i];
+          jc << quoted(targets[i].label) << ',' << k << ",frequency_Hz,"
+             << r.modes.frequency[k];
+          for (const double d : r.modes.derivative[k])
+            jc << ',' << d;
+          jc << '\n';
+          if (!with_damping)
+            continue;
+          jc << quoted(targets[i].label) << ',' << k << ",damping_ratio,"
+             << r.modes.damping_ratio[k];
+          for (const double d : r.modes.damping_derivative[k])
+            jc << ',' << d;
+          jc << '\n';
         }
 
       io::OutputFile md(work_dir + "/modes.csv");
       // with measurement points, the shape there (M-normalised mode)
-      md << "mode,configuration,freq_Hz,name,target";
+      md << "mode,configuration,freq_Hz,name,target"
+         << (with_damping ? ",damping_ratio" : "");
       for (const auto &pt : points)
         md << ',' << quoted("shape " + pt.label);
       md << '\n' << std::setprecision(10);
@@ -773,6 +929,8 @@ namespace squeal
              << quoted(configurations[r.modes.configuration[k]].name) << ','
              << r.modes.frequency[k] << ',' << quoted(r.modes.name[k]) << ','
              << quoted(target);
+          if (with_damping)
+            md << ',' << r.modes.damping_ratio[k];
           for (const double v : r.modes.shape[k])
             md << ',' << v;
           md << '\n';

@@ -491,7 +491,10 @@ namespace squeal
         "variance), name (pairs the mode with a model mode of that name: "
         "a disc mode (n,m+-), or (n,m) for either sign, or a body and "
         "direction as `support y`), configuration (one of Configurations; "
-        "empty: the file's values) and, with Measurement points, one "
+        "empty: the file's values), damping_ratio (the measured modal "
+        "damping ratio zeta in (0, 1), not in %; empty: not measured; "
+        "fitted with the Rayleigh damping's named parameters) and, with "
+        "Measurement points, one "
         "column per point whose header starts with `shape` (in the "
         "points' order; empty values: no shape for that mode). Without "
         "shape or name a mode is paired by frequency. Quote fields "
@@ -519,6 +522,12 @@ namespace squeal
                         "Relative standard deviation of a measured "
                         "frequency of weight 1 [-]: scales the residuals and "
                         "gives the fitted parameters' uncertainty.");
+      prm.declare_entry("Damping error",
+                        str(damping_error),
+                        Patterns::Double(1e-12, 10.),
+                        "Relative standard deviation of a measured damping "
+                        "ratio of weight 1 [-] (the Targets' damping_ratio "
+                        "column).");
       prm.declare_entry("Maximum iterations",
                         std::to_string(max_iterations),
                         Patterns::Integer(0, 1000),
@@ -548,7 +557,10 @@ namespace squeal
                         Patterns::Double(0.),
                         "Highest model mode computed [Hz] (every mode below "
                         "it, counted by Sylvester inertia); 0: 1.5 times the "
-                        "highest measured frequency.");
+                        "highest measured frequency, 2.5 times when a target "
+                        "has a damping ratio (the modes above it enter the "
+                        "damping ratios' derivatives in their static limit, "
+                        "an error of order (f / Maximum frequency)^2).");
       prm.leave_subsection();
     }
 
@@ -561,6 +573,7 @@ namespace squeal
       measurement_points = prm.get("Measurement points");
       configurations     = prm.get("Configurations");
       measurement_error  = prm.get_double("Measurement error");
+      damping_error      = prm.get_double("Damping error");
       max_iterations     = prm.get_integer("Maximum iterations");
       tolerance          = prm.get_double("Tolerance");
       mac_threshold      = prm.get_double("MAC threshold");

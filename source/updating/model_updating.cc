@@ -129,10 +129,21 @@ namespace squeal
           if (row.size() != parameters.size())
             throw std::logic_error("model updating: one derivative per "
                                    "parameter expected");
-        e.pairing            = pair_targets(targets, e.modes, options);
-        const unsigned int m = targets.size(), n = parameters.size();
-        e.r.resize(m);
-        e.J.resize(m, n);
+        e.pairing                   = pair_targets(targets, e.modes, options);
+        const unsigned int        m = targets.size(), n = parameters.size();
+        std::vector<unsigned int> damped; // targets with a damping ratio
+        for (unsigned int i = 0; i < m; ++i)
+          if (targets[i].damping_ratio > 0.)
+            damped.push_back(i);
+        if (!damped.empty() &&
+            (e.modes.damping_ratio.size() != e.modes.frequency.size() ||
+             e.modes.damping_derivative.size() != e.modes.frequency.size()))
+          throw std::runtime_error(
+            "model updating: target '" + targets[damped[0]].label +
+            "' has a damping ratio, but the model gives none (a damping "
+            "ratio is fitted with Rayleigh damping)");
+        e.r.resize(m + damped.size());
+        e.J.resize(m + damped.size(), n);
         for (unsigned int i = 0; i < m; ++i)
           {
             const Target &t = targets[i];
@@ -143,6 +154,20 @@ namespace squeal
             for (unsigned int j = 0; j < n; ++j)
               e.J(i, j) =
                 scale * e.modes.derivative[k][j] * dp_dx(parameters[j], e.p[j]);
+          }
+        for (unsigned int d = 0; d < damped.size(); ++d)
+          {
+            const Target &t = targets[damped[d]];
+            const int     k = e.pairing.mode[damped[d]];
+            const double  scale =
+              std::sqrt(t.weight) / (options.damping_error * t.damping_ratio);
+            e.r[m + d] = scale * (e.modes.damping_ratio[k] - t.damping_ratio);
+            if (e.modes.damping_derivative[k].size() != n)
+              throw std::logic_error("model updating: one damping derivative "
+                                     "per parameter expected");
+            for (unsigned int j = 0; j < n; ++j)
+              e.J(m + d, j) = scale * e.modes.damping_derivative[k][j] *
+                              dp_dx(parameters[j], e.p[j]);
           }
         e.cost = 0.5 * e.r.squaredNorm();
         return e;
@@ -326,13 +351,14 @@ namespace squeal
             throw std::runtime_error(what.str());
           }
       for (const Target &t : targets)
-        if (!(t.frequency > 0.) || !(t.weight > 0.))
+        if (!(t.frequency > 0.) || !(t.weight > 0.) ||
+            !(t.damping_ratio >= 0. && t.damping_ratio < 1.))
           throw std::runtime_error("model updating: target '" + t.label +
-                                   "' needs a frequency > 0 Hz and a weight "
-                                   "> 0");
-      if (!(options.measurement_error > 0.))
-        throw std::runtime_error("model updating: the measurement error must "
-                                 "be > 0");
+                                   "' needs a frequency > 0 Hz, a weight "
+                                   "> 0 and a damping ratio in [0, 1)");
+      if (!(options.measurement_error > 0.) || !(options.damping_error > 0.))
+        throw std::runtime_error("model updating: the measurement errors of "
+                                 "frequency and damping must be > 0");
 
       Eigen::VectorXd x(n), lo(n), hi(n);
       for (unsigned int j = 0; j < n; ++j)

@@ -177,6 +177,8 @@ namespace squeal
       std::unique_ptr<PointObservation> observation;
       double                            f_max    = 0.;
       unsigned int                      n_solves = 0;
+      /// a target has a damping ratio: the modes carry theirs
+      bool with_damping = false;
     };
   } // namespace analyses
 } // namespace squeal

@@ -11,6 +11,11 @@
  *   r_i(p) = sqrt(w_i) (f_i(p) - f_i,measured) / (sigma f_i,measured),
  *
  * sigma the relative standard deviation of a measured frequency of weight 1,
+ * and, for a measured mode that has a damping ratio, a second residual
+ *
+ *   r_i'(p) = sqrt(w_i) (zeta_i(p) - zeta_i,measured)
+ *             / (sigma_zeta zeta_i,measured),
+ *
  * with the exact frequency sensitivities of the model (for a symmetric
  * pencil with M-orthonormal phi_k: d omega_k^2 / dp = phi_k^T (dK/dp -
  * omega_k^2 dM/dp) phi_k; R.L. Fox, M.P. Kapoor, AIAA J. 6 (1968)
@@ -70,6 +75,9 @@ namespace squeal
       unsigned int configuration = 0;
       /// measured shape at the measurement points (any scale; empty: none)
       std::vector<double> shape;
+      /// measured modal (viscous) damping ratio zeta [-] of the mode, in
+      /// (0, 1); 0: not measured (no damping residual)
+      double damping_ratio = 0.;
     };
 
     /** The modes of the model at one parameter point. */
@@ -85,6 +93,11 @@ namespace squeal
       /// several values of parameters that are not fitted, as a brake at
       /// two pad moduli); empty: every mode in configuration 0
       std::vector<unsigned int> configuration;
+      /// per mode, its modal damping ratio zeta_k [-] (empty: the model
+      /// gives none; needed when a target has a damping ratio)
+      std::vector<double> damping_ratio;
+      /// damping_derivative[k][j] = d zeta_k / d p_j [per unit of p_j]
+      std::vector<std::vector<double>> damping_derivative;
     };
 
     /**
@@ -99,6 +112,9 @@ namespace squeal
       /// relative standard deviation sigma of a measured frequency of
       /// weight 1 [-]
       double measurement_error = 0.01;
+      /// relative standard deviation of a measured damping ratio of weight
+      /// 1 [-] (damping is measured far less precisely than frequency)
+      double damping_error = 0.2;
       /// Levenberg-Marquardt iterations at most
       unsigned int max_iterations = 50;
       /// stop when an accepted step lowers the cost by less than this
