@@ -11,6 +11,7 @@
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/modal_contribution.h>
 #include <squeal/eigen/qep_solver.h>
+#include <squeal/eigen/reduced_model.h>
 #include <squeal/eigen/sensitivity.h>
 #include <squeal/io/output_directory.h>
 
@@ -510,6 +511,43 @@ namespace squeal
       model.tie_constraints = contact::add_tie_constraints;
     }
 
+    parameters::ScalarPoint
+    ModelUpdatingAnalysis::configuration_point(
+      const unsigned int         c,
+      const std::vector<double> &values,
+      std::vector<std::string>  &names,
+      std::vector<int>          &column) const
+    {
+      // the parameters that act in configuration c: a parameter of one
+      // configuration replaces the common one there
+      const auto acts = [&](const updating::Parameter &q) {
+        if (!q.configuration.empty())
+          return q.configuration == configurations[c].name;
+        return std::none_of(parameters.begin(),
+                            parameters.end(),
+                            [&](const auto &o) {
+                              return o.scene_name == q.scene_name &&
+                                     !o.configuration.empty() &&
+                                     o.configuration == configurations[c].name;
+                            });
+      };
+      parameters::ScalarPoint p = model.parts().reference;
+      for (const auto &[name, value] : configurations[c].values)
+        p.set(name, value);
+      names.clear();
+      column.clear();
+      for (unsigned int j = 0; j < parameters.size(); ++j)
+        if (acts(parameters[j]))
+          {
+            p.set(parameters[j].scene_name, values[j]);
+            column.push_back(names.size());
+            names.push_back(parameters[j].scene_name);
+          }
+        else
+          column.push_back(-1);
+      return p;
+    }
+
     updating::ModelModes
     ModelUpdatingAnalysis::modes_at(const std::vector<double> &values)
     {
@@ -520,39 +558,23 @@ namespace squeal
       band.symmetric_solver = es.symmetric_solver;
       ConditionalOStream   quiet(std::cout, false);
       updating::ModelModes result;
+      // the reduced model's basis takes the modes up to basis_factor f_max
+      const double factor =
+        prm.updating.method == "reduced" ? basis_factor : 1.;
+      basis_candidates.clear();
       for (unsigned int c = 0; c < configurations.size(); ++c)
         if (used[c])
           {
-            // the parameters that act in configuration c: a parameter of
-            // one configuration replaces the common one there
-            const auto acts = [&](const updating::Parameter &q) {
-              if (!q.configuration.empty())
-                return q.configuration == configurations[c].name;
-              return std::none_of(parameters.begin(),
-                                  parameters.end(),
-                                  [&](const auto &o) {
-                                    return o.scene_name == q.scene_name &&
-                                           !o.configuration.empty() &&
-                                           o.configuration ==
-                                             configurations[c].name;
-                                  });
-            };
-            parameters::ScalarPoint p = parts.reference;
-            for (const auto &[name, value] : configurations[c].values)
-              p.set(name, value);
-            std::vector<std::string> names;
-            std::vector<int>         column; // parameter j -> slope, or -1
-            for (unsigned int j = 0; j < parameters.size(); ++j)
-              if (acts(parameters[j]))
-                {
-                  p.set(parameters[j].scene_name, values[j]);
-                  column.push_back(names.size());
-                  names.push_back(parameters[j].scene_name);
-                }
-              else
-                column.push_back(-1);
-            auto modes = eigen::frictionless_modes(parts, p, band, 1., quiet);
+            std::vector<std::string>      names;
+            std::vector<int>              column; // parameter j -> slope, or -1
+            const parameters::ScalarPoint p =
+              configuration_point(c, values, names, column);
+            auto modes =
+              eigen::frictionless_modes(parts, p, band, factor, quiet);
             ++n_solves;
+            basis_candidates.insert(basis_candidates.end(),
+                                    modes.shape.begin(),
+                                    modes.shape.end());
 
             // d omega^2 / dp_j = phi^T (K_j' - omega^2 M_j') phi from the
             // parts' quadratic forms q_k = phi^T A_k phi (0 for a parameter
@@ -593,9 +615,11 @@ namespace squeal
               }
             for (unsigned int m = 0; m < n_modes; ++m)
               {
-                const auto         &phi = modes.shape[m];
-                const double        f   = modes.frequency[m];
-                const double        w2  = std::pow(2 * M_PI * f, 2);
+                const auto  &phi = modes.shape[m];
+                const double f   = modes.frequency[m];
+                const double w2  = std::pow(2 * M_PI * f, 2);
+                if (f > f_max) // a basis mode only
+                  continue;
                 std::vector<double> q(parts.size(), 0.);
                 // A_k phi for the parts a parameter's stiffness or mass acts
                 // in (the shape derivative needs them whole)
@@ -690,6 +714,197 @@ namespace squeal
       return result;
     }
 
+    updating::ModelModes
+    ModelUpdatingAnalysis::reduced_modes_at(const std::vector<double> &values)
+    {
+      TimerOutput::Scope t(timer, "reduced model");
+      const auto         parts = model.parts();
+      const unsigned int r     = reduced->size();
+      const auto combine = [&](const physics::MatrixParts::Coefficients &a) {
+        Eigen::MatrixXd A = Eigen::MatrixXd::Zero(r, r);
+        for (unsigned int k = 0; k < parts.size(); ++k)
+          if (a[k] != 0.)
+            A += a[k] * reduced->projected_part(k);
+        return A;
+      };
+      updating::ModelModes result;
+      physics::PETScVector phi, im, zero;
+      for (unsigned int c = 0; c < configurations.size(); ++c)
+        if (used[c])
+          {
+            std::vector<std::string>      names;
+            std::vector<int>              column;
+            const parameters::ScalarPoint p =
+              configuration_point(c, values, names, column);
+            const auto coeff = parts.coefficients(p);
+            const auto slope = eigen::coefficient_slopes(parts, p, names);
+            // the symmetric problem on the span: V^T (K_s + K_n) V q =
+            // omega^2 V^T M V q, q normalised by V^T M V
+            Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
+              combine(coeff.symmetric_stiffness), combine(coeff.mass));
+            if (es.info() != Eigen::Success)
+              throw std::runtime_error("model updating: the reduced "
+                                       "eigenproblem could not be solved");
+            const Eigen::MatrixXd       &Q  = es.eigenvectors();
+            const Eigen::VectorXd       &W2 = es.eigenvalues();
+            std::vector<Eigen::MatrixXd> dK, dM, dC;
+            for (const auto &d : slope)
+              {
+                dK.push_back(combine(d.symmetric_stiffness));
+                dM.push_back(combine(d.mass));
+                if (with_damping)
+                  dC.push_back(combine(d.damping));
+              }
+            Eigen::MatrixXd G; // Q^T C Q
+            if (with_damping)
+              G = Q.transpose() * combine(coeff.damping) * Q;
+            for (unsigned int m = 0; m < r; ++m)
+              {
+                const double w2 = W2[m];
+                const double f  = std::sqrt(std::max(w2, 0.)) / (2 * M_PI);
+                if (!(f > 0.) || f > f_max)
+                  continue;
+                const Eigen::VectorXd q = Q.col(m);
+                std::vector<double>   d, dzeta;
+                for (const int j : column)
+                  {
+                    if (j < 0)
+                      {
+                        d.push_back(0.);
+                        dzeta.push_back(0.);
+                        continue;
+                      }
+                    // exact on the span: the reduced model's own derivatives
+                    const Eigen::VectorXd F   = (dK[j] - w2 * dM[j]) * q;
+                    const double          dw2 = q.dot(F);
+                    d.push_back(dw2 / (8 * M_PI * M_PI * f));
+                    if (!with_damping)
+                      continue;
+                    // as modes_at(), the expansion now complete (all r
+                    // modes of the span)
+                    const Eigen::VectorXd a = Q.transpose() * F;
+                    double shape            = -0.5 * q.dot(dM[j] * q) * G(m, m);
+                    for (unsigned int l = 0; l < r; ++l)
+                      if (l != m && std::abs(w2 - W2[l]) > 1e-6 * w2)
+                        shape += a[l] / (w2 - W2[l]) * G(m, l);
+                    const double w    = std::sqrt(w2);
+                    const double zeta = G(m, m) / (2 * w);
+                    dzeta.push_back((q.dot(dC[j] * q) + 2 * shape) / (2 * w) -
+                                    zeta * dw2 / (2 * w2));
+                  }
+                if (with_damping)
+                  {
+                    result.damping_ratio.push_back(G(m, m) /
+                                                   (2 * std::sqrt(w2)));
+                    result.damping_derivative.push_back(std::move(dzeta));
+                  }
+                reduced->expand(q.cast<std::complex<double>>(), phi, im);
+                if (zero.size() != phi.size())
+                  {
+                    zero.reinit(phi);
+                    zero = 0.;
+                  }
+                result.frequency.push_back(f);
+                result.derivative.push_back(std::move(d));
+                result.shape.push_back(observation ? (*observation)(phi) :
+                                                     std::vector<double>());
+                result.configuration.push_back(c);
+                result.name.push_back(
+                  mode_name(model, p, phi, zero, nullptr, true));
+              }
+          }
+      ++n_reduced;
+      return result;
+    }
+
+    updating::Result
+    ModelUpdatingAnalysis::fit_reduced(const std::vector<double> &start,
+                                       const updating::Options   &options)
+    {
+      std::ostream *log  = pcout.is_active() ? &pcout.get_stream() : nullptr;
+      const auto    full = [this](const std::vector<double> &v) {
+        return modes_at(v);
+      };
+      const auto on_span = [this](const std::vector<double> &v) {
+        return reduced_modes_at(v);
+      };
+      // a full solve only evaluates: no step
+      updating::Options evaluate = options;
+      evaluate.max_iterations    = 0;
+      // the start, solved in full: its modes are the first basis
+      const updating::Result first =
+        updating::update(full, parameters, start, targets, evaluate);
+      reduced = std::make_unique<eigen::ReducedModel>();
+      reduced->build_from_vectors(model.parts(), basis_candidates, false);
+
+      updating::Result                 result;
+      std::vector<updating::Iteration> history;
+      std::vector<double>              at         = first.value;
+      unsigned int                     iterations = 0, trials = 0;
+      const unsigned int               max_rounds = 10;
+      for (unsigned int round = 1;; ++round)
+        {
+          if (log != nullptr)
+            *log << "Model updating: round " << round << " on the span of "
+                 << reduced->size() << " full-model modes" << std::endl;
+          const updating::Result fit =
+            updating::update(on_span, parameters, at, targets, options, log);
+          // the full solve at the reduced fit's point
+          result =
+            updating::update(full, parameters, fit.value, targets, evaluate);
+          double gap = 0.;
+          for (unsigned int i = 0; i < targets.size(); ++i)
+            {
+              const double f_full =
+                result.modes.frequency[result.pairing.mode[i]];
+              gap = std::max(gap,
+                             std::abs(fit.modes.frequency[fit.pairing.mode[i]] -
+                                      f_full) /
+                               f_full);
+            }
+          for (const auto &step : fit.history)
+            if (step.index > 0 || round == 1)
+              {
+                history.push_back(step);
+                history.back().index = step.index == 0 ? 0 : ++trials;
+              }
+          iterations += fit.iterations;
+          if (log != nullptr)
+            *log << "Model updating: round " << round << " confirmed by a "
+                 << "full solve: cost " << fit.cost << " on the span, "
+                 << result.cost << " in full; largest frequency gap of a "
+                 << "paired mode " << gap << std::endl;
+          if (gap <= prm.updating.reduced_tolerance)
+            {
+              result.converged   = fit.converged;
+              result.stop_reason = fit.stop_reason + " (round " +
+                                   std::to_string(round) +
+                                   ", confirmed by a full solve)";
+              break;
+            }
+          if (round == max_rounds)
+            {
+              std::ostringstream what;
+              what << "Model updating/Method = reduced: after " << max_rounds
+                   << " rounds a paired mode of the reduced model still "
+                   << "differs from the full solve by " << gap
+                   << " (Reduced tolerance " << prm.updating.reduced_tolerance
+                   << "); use Method = full or raise the tolerance";
+              throw std::runtime_error(what.str());
+            }
+          // the full modes at that point join the basis
+          reduced->enrich(model.parts(), basis_candidates, false);
+          at = fit.value;
+        }
+      result.initial         = first.initial;
+      result.initial_modes   = first.initial_modes;
+      result.initial_pairing = first.initial_pairing;
+      result.initial_cost    = first.initial_cost;
+      result.iterations      = iterations;
+      result.history         = history;
+      return result;
+    }
+
     void
     ModelUpdatingAnalysis::run()
     {
@@ -751,13 +966,16 @@ namespace squeal
       for (const auto &q : parameters)
         start.push_back(reference.get(q.scene_name));
       // the iteration's progress on rank 0's log as it goes
-      updating::Result result = updating::update(
-        [this](const std::vector<double> &v) { return modes_at(v); },
-        parameters,
-        start,
-        targets,
-        options,
-        pcout.is_active() ? &pcout.get_stream() : nullptr);
+      updating::Result result =
+        u.method == "reduced" && u.max_iterations > 0 ?
+          fit_reduced(start, options) :
+          updating::update(
+            [this](const std::vector<double> &v) { return modes_at(v); },
+            parameters,
+            start,
+            targets,
+            options,
+            pcout.is_active() ? &pcout.get_stream() : nullptr);
       if (!result.converged && u.max_iterations > 0)
         throw std::runtime_error(
           "model updating did not converge within Model updating/Maximum "
@@ -771,7 +989,11 @@ namespace squeal
       }
       io::finish_run(work_dir, prm.output.directory, comm);
       pcout << "Results written to " << prm.output.directory << "/ ("
-            << n_solves << " eigensolves)" << std::endl;
+            << n_solves << " eigensolves"
+            << (n_reduced > 0 ? ", " + std::to_string(n_reduced) +
+                                  " evaluations of the reduced model" :
+                                std::string())
+            << ")" << std::endl;
     }
 
     void

@@ -528,6 +528,22 @@ namespace squeal
                         "Relative standard deviation of a measured damping "
                         "ratio of weight 1 [-] (the Targets' damping_ratio "
                         "column).");
+      prm.declare_entry(
+        "Method",
+        method,
+        Patterns::Selection("reduced|full"),
+        "reduced: the Levenberg-Marquardt trials solve the model projected "
+        "on the frictionless modes (to 1.5 x Maximum frequency) of the full "
+        "solves so far; at the reduced fit's end a full solve confirms it: "
+        "where a paired mode's frequency differs by more than Reduced "
+        "tolerance, its modes join the basis and the fit goes on from there. "
+        "full: a full eigensolve at every trial.");
+      prm.declare_entry("Reduced tolerance",
+                        str(reduced_tolerance),
+                        Patterns::Double(1e-12, 0.1),
+                        "Largest relative frequency difference of a paired "
+                        "mode between the reduced model and the confirming "
+                        "full solve [-] (Method = reduced).");
       prm.declare_entry("Maximum iterations",
                         std::to_string(max_iterations),
                         Patterns::Integer(0, 1000),
@@ -575,6 +591,8 @@ namespace squeal
       measurement_error  = prm.get_double("Measurement error");
       damping_error      = prm.get_double("Damping error");
       max_iterations     = prm.get_integer("Maximum iterations");
+      method             = prm.get("Method");
+      reduced_tolerance  = prm.get_double("Reduced tolerance");
       tolerance          = prm.get_double("Tolerance");
       mac_threshold      = prm.get_double("MAC threshold");
       frequency_window   = prm.get_double("Frequency window");

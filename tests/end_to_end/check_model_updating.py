@@ -5,6 +5,9 @@ k_n = 2.5e13 N/m^3; a run with Maximum iterations = 0 writes modes.csv with
 the shapes at the measurement points), the frequencies get a fixed
 pseudo-random noise of at most 0.2 % and the shapes 1 % of their largest
 value, and the fit from the file's values (10 GPa, 210 GPa, 1e13) must:
+- converge on the reduced model (the default Method) confirmed by a full
+  solve, and agree with the fit that solves the full model at every trial
+  (Method = full) within 0.1 of a deviation;
 - converge, with every fitted value within 3 of its stated standard
   deviations of the hidden one, the deviations below 5 %, all identifiable;
 - pair every measured mode with its own (MAC >= 0.9 after the fit; the
@@ -30,6 +33,7 @@ value, and the fit from the file's values (10 GPa, 210 GPa, 1e13) must:
   converge within Maximum iterations.
 Usage: check_model_updating.py SQUEAL BASE_PRM WORKDIR"""
 import csv
+import re
 import shutil
 import subprocess
 import math
@@ -153,6 +157,25 @@ check("modes.csv names each measured mode's model mode once",
       paired == {t["label"] for t in targets})
 check("mac.csv: one row per measured mode",
       len(rows(fitted, "mac.csv")) == len(targets))
+
+# 2b. the reduced model (the default) against the full solver at every trial
+with open(os.path.join(fitted, "summary.txt")) as f:
+    summary = f.read()
+solves = re.search(r"after (\d+) steps \((\d+) eigensolves\)", summary)
+check("the reduced fit is confirmed by a full solve, in fewer eigensolves "
+      "than steps", "confirmed by a full solve" in summary and solves and
+      int(solves.group(2)) < int(solves.group(1)), summary, show=True)
+full_fit, _ = run_squeal(squeal, base, "fitted_full", fit_prm + """subsection Model updating
+  set Method = full
+end
+""")
+par_full = {r["parameter"]: r for r in rows(full_fit, "updated_parameters.csv")}
+for name in HIDDEN:
+    a, b = float(par[name]["fitted"]), float(par_full[name]["fitted"])
+    sd = float(par_full[name]["standard_deviation"])
+    check(f"{name}: reduced and full fits agree within 0.1 deviation",
+          abs(a - b) <= 0.1 * sd, f"{a:.8g} vs {b:.8g} (deviation {sd:.3g})",
+          show=True)
 
 # 3. mpirun -np 2, with a parameter no frictionless mode depends on
 mpi, _ = run_squeal(squeal, base, "fitted_mpi", fit_prm + """subsection Model updating

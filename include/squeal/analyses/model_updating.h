@@ -21,6 +21,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/timer.h>
 
+#include <squeal/eigen/reduced_model.h>
 #include <squeal/physics/structural_model.h>
 #include <squeal/updating/model_updating.h>
 
@@ -153,6 +154,24 @@ namespace squeal
       /// frequency derivatives and shapes at the measurement points
       updating::ModelModes
       modes_at(const std::vector<double> &values);
+      /// as modes_at(), on the reduced model (Method = reduced): the
+      /// symmetric problem projected on the basis, its exact derivatives
+      updating::ModelModes
+      reduced_modes_at(const std::vector<double> &values);
+      /// Method = reduced: Levenberg-Marquardt on the reduced model, each
+      /// fit confirmed by a full solve; the basis grows by the full modes
+      /// at every point that fails the confirmation (at most 10 rounds)
+      updating::Result
+      fit_reduced(const std::vector<double> &start,
+                  const updating::Options   &options);
+      /// the point of configuration @p c at @p values, with the names of
+      /// the parameters acting there and, per parameter, its index among
+      /// them (-1: it does not act there)
+      parameters::ScalarPoint
+      configuration_point(const unsigned int         c,
+                          const std::vector<double> &values,
+                          std::vector<std::string>  &names,
+                          std::vector<int>          &column) const;
       /// the log's summary, then write_files() on rank 0 (collective)
       void
       write_results(const updating::Result &result) const;
@@ -179,6 +198,12 @@ namespace squeal
       unsigned int                      n_solves = 0;
       /// a target has a damping ratio: the modes carry theirs
       bool with_damping = false;
+      /// the reduced model (Method = reduced) and the modes of the last
+      /// full solve, up to basis_factor x the maximum frequency
+      std::unique_ptr<eigen::ReducedModel> reduced;
+      std::vector<physics::PETScVector>    basis_candidates;
+      static constexpr double              basis_factor = 1.5;
+      unsigned int                         n_reduced    = 0;
     };
   } // namespace analyses
 } // namespace squeal

@@ -145,6 +145,17 @@ namespace squeal
         return V.cols();
       }
 
+      /**
+       * The projected part V^T A_k V of the model's part @p k (r x r, on
+       * every rank; zero for a part that is empty), for callers that combine
+       * the parts themselves (model updating's symmetric problem).
+       */
+      const Eigen::MatrixXd &
+      projected_part(const unsigned int k) const
+      {
+        return Ar.at(k);
+      }
+
     private:
       void
       project(const physics::MatrixParts &model,

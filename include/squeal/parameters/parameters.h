@@ -531,6 +531,12 @@ namespace squeal
       double frequency_window = 0.5; ///< relative, pairing by frequency
       /// Hz, the highest model mode computed; 0: 1.5 x the highest target
       double maximum_frequency = 0.;
+      /// `full`: every trial a full eigensolve; `reduced`: the trials on
+      /// the span of the full solves' modes, a full solve confirming
+      std::string method = "reduced";
+      /// largest relative frequency gap of a paired mode between the
+      /// reduced and the confirming full solve [-]
+      double reduced_tolerance = 1e-4;
       /** Declares the subsection's entries: defaults, ranges, help (SI units).
        */
       void
