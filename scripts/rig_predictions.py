@@ -24,13 +24,18 @@ The model is the fitted one with these changes, each a stated assumption:
 - the weights: (F - 25 N) / g on the support's top (`weights.m`);
 - the interface stiffness at a load F: k_n(F) = k_n(25 N) (F / 25 N)^n,
   with n = ln(k_n(225 N) / k_n(25 N)) / ln 9 through the two fitted values
-  where the fit could determine both, else n = 1 (a rough contact of
+  where the fit could determine both, else n = 1, and the same law for the
+  tangential (shear) stiffness k_t where it was fitted, its shear kept in
+  sliding (the asperities' elastic shear under the gross slip; the pad
+  modes were measured in rotation too) (a rough contact of
   exponentially distributed asperity heights: stiffness proportional to
   load; J. A. Greenwood and J. B. P. Williamson, Proc. R. Soc. A 295
   (1966) 300-319);
 - the rotating state: the disc turning lowers the support frequencies by
   about 500 Hz (thesis sec. 4.2.3: one end of each plate is compressed),
   taken as the plates' tangential stiffness scaled by ROTATING_PLATES;
+- the Rayleigh damping fitted to Table 4.1's ratios where it was fitted
+  (damping.alpha, damping.beta), else the scene's;
 - S5's rubber layer in series with the plates: the plates' stiffness
   (both directions) scaled by RUBBER_PLATES, and the support's damping
   raised (its own Rayleigh beta).
@@ -122,10 +127,20 @@ def main():
         os.path.join(here, "..", "prm", "rig_predictions"))
     os.makedirs(out, exist_ok=True)
     p, identifiable = fitted(args.updated_parameters)
-    k25, k225 = p.pop("pad on disc.k_n"), p.pop("pad on disc.k_n@225 N")
-    exponent = math.log(k225 / k25) / math.log(9.0) if (
-        identifiable["pad on disc.k_n"] and
-        identifiable["pad on disc.k_n@225 N"]) else 1.0
+
+    def load_law(name):
+        """(value at 25 N, exponent n) of a stiffness fitted at 25 and
+        225 N; None where it was not fitted."""
+        if name not in p:
+            return None
+        low, high = p.pop(name), p.pop(name + "@225 N")
+        both = identifiable[name] and identifiable[name + "@225 N"]
+        return low, (math.log(high / low) / math.log(9.0) if both else 1.0)
+
+    k25, exponent = load_law("pad on disc.k_n")
+    shear = load_law("pad on disc.k_t")
+    damping = {k: p.pop(k) for k in ("damping.alpha", "damping.beta")
+               if k in p}
     for name, pad, load, rubber in CASES:
         values = dict(p)
         values["plates.k"] = p["plates.k"] * ROTATING_PLATES * (
@@ -133,6 +148,7 @@ def main():
         values["plates radial.k"] = p["plates.k"] * (
             RUBBER_PLATES if rubber else 1.0)
         k_n = k25 * (load / SUPPORT_WEIGHT) ** exponent
+        k_t = shear[0] * (load / SUPPORT_WEIGHT) ** shear[1] if shear else 0.
         weights = (load - SUPPORT_WEIGHT) / G
         mesh = os.path.relpath(
             os.path.join(here, "..", "prm", f"rig_pad{pad:g}", "rig.msh"),
@@ -143,7 +159,9 @@ def main():
             f"{', rubber layer' if rubber else ''}, mu swept 0 -> {MU:g},"
             f" rotating state. Written by\n# scripts/rig_predictions.py "
             f"from the fitted parameters (do not edit; rerun\n# it). "
-            f"k_n = {k_n:.6g} N/m^3 (load exponent {exponent:.4f}).\n"
+            f"k_n = {k_n:.6g} N/m^3 (load exponent {exponent:.4f}), "
+            f"k_t = {k_t:.6g} N/m^3"
+            f"{f' (load exponent {shear[1]:.4f})' if shear else ''}.\n"
             f"# Run: build/squeal prm/rig_predictions/{name}.prm\n")
         extra = {"support": f"alpha=0, beta={RUBBER_BETA:g}"} if rubber \
             else None
@@ -156,6 +174,7 @@ subsection Mesh
 end
 subsection Interface
   set Normal stiffness     = {k_n:.10g}
+  set Tangential stiffness = {k_t:.10g}
   set Friction coefficient = {MU:g}
 end
 subsection Eigensolver
@@ -174,10 +193,17 @@ subsection Output
   set Mode shapes = unstable and first
 end
 """
+        if damping:
+            text += f"""subsection Damping
+  set Alpha = {damping.get('damping.alpha', 0.02):.10g}
+  set Beta  = {damping.get('damping.beta', 1e-7):.10g}
+end
+"""
         with open(os.path.join(out, name + ".prm"), "w") as f:
             f.write(text)
     print(f"rig_predictions.py: {len(CASES)} files in {out}; interface "
-          f"stiffness exponent {exponent:.4f}")
+          f"stiffness exponent {exponent:.4f}"
+          f"{f', shear stiffness exponent {shear[1]:.4f}' if shear else ''}")
 
 
 if __name__ == "__main__":

@@ -834,21 +834,52 @@ namespace squeal
       // the start, solved in full: its modes are the first basis
       const updating::Result first =
         updating::update(full, parameters, start, targets, evaluate);
-      reduced = std::make_unique<eigen::ReducedModel>();
-      reduced->build_from_vectors(model.parts(), basis_candidates, false);
 
-      updating::Result                 result;
-      std::vector<updating::Iteration> history;
-      std::vector<double>              at         = first.value;
-      unsigned int                     iterations = 0, trials = 0;
-      const unsigned int               max_rounds = 10;
+      std::vector<physics::PETScVector> previous; // the point before's
+      updating::Result                  result;
+      std::vector<updating::Iteration>  history;
+      std::vector<double>               at         = first.value;
+      unsigned int                      iterations = 0, trials = 0;
+      const unsigned int                max_rounds = 20;
       for (unsigned int round = 1;; ++round)
         {
+          // the span of the full modes at this point and the one before
+          std::vector<physics::PETScVector> vectors = basis_candidates;
+          vectors.insert(vectors.end(), previous.begin(), previous.end());
+          reduced = std::make_unique<eigen::ReducedModel>();
+          reduced->build_from_vectors(model.parts(), vectors, false);
+          previous = basis_candidates;
+          // a trust region about the point: the span represents the model
+          // near the points it was taken at, so a round moves each
+          // parameter by a factor of trust_factor at most (by a quarter of
+          // its range where linear)
+          std::vector<updating::Parameter> region = parameters;
+          for (unsigned int j = 0; j < region.size(); ++j)
+            {
+              auto        &q    = region[j];
+              const double half = (q.upper - q.lower) / 4;
+              q.lower =
+                std::max(q.lower,
+                         q.log_scale ? at[j] / trust_factor : at[j] - half);
+              q.upper =
+                std::min(q.upper,
+                         q.log_scale ? at[j] * trust_factor : at[j] + half);
+            }
           if (log != nullptr)
             *log << "Model updating: round " << round << " on the span of "
                  << reduced->size() << " full-model modes" << std::endl;
           const updating::Result fit =
-            updating::update(on_span, parameters, at, targets, options, log);
+            updating::update(on_span, region, at, targets, options, log);
+          // a parameter held by the region's bound, not by its own
+          bool held = false;
+          for (unsigned int j = 0; j < region.size(); ++j)
+            if (fit.at_bound[j])
+              {
+                const bool low = std::abs(fit.value[j] - region[j].lower) <
+                                 std::abs(fit.value[j] - region[j].upper);
+                held = held || (low ? region[j].lower > parameters[j].lower :
+                                      region[j].upper < parameters[j].upper);
+              }
           // the full solve at the reduced fit's point
           result =
             updating::update(full, parameters, fit.value, targets, evaluate);
@@ -873,8 +904,10 @@ namespace squeal
             *log << "Model updating: round " << round << " confirmed by a "
                  << "full solve: cost " << fit.cost << " on the span, "
                  << result.cost << " in full; largest frequency gap of a "
-                 << "paired mode " << gap << std::endl;
-          if (gap <= prm.updating.reduced_tolerance)
+                 << "paired mode " << gap
+                 << (held ? "; a parameter at the round's trust region" : "")
+                 << std::endl;
+          if (gap <= prm.updating.reduced_tolerance && !held)
             {
               result.converged   = fit.converged;
               result.stop_reason = fit.stop_reason + " (round " +
@@ -886,14 +919,15 @@ namespace squeal
             {
               std::ostringstream what;
               what << "Model updating/Method = reduced: after " << max_rounds
-                   << " rounds a paired mode of the reduced model still "
-                   << "differs from the full solve by " << gap
-                   << " (Reduced tolerance " << prm.updating.reduced_tolerance
+                   << " rounds the reduced fit is not confirmed (a paired "
+                   << "mode differs from the full solve by " << gap
+                   << ", Reduced tolerance " << prm.updating.reduced_tolerance
+                   << (held ? "; a parameter is still at the round's trust "
+                              "region" :
+                              "")
                    << "); use Method = full or raise the tolerance";
               throw std::runtime_error(what.str());
             }
-          // the full modes at that point join the basis
-          reduced->enrich(model.parts(), basis_candidates, false);
           at = fit.value;
         }
       result.initial         = first.initial;

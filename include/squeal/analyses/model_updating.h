@@ -158,9 +158,10 @@ namespace squeal
       /// symmetric problem projected on the basis, its exact derivatives
       updating::ModelModes
       reduced_modes_at(const std::vector<double> &values);
-      /// Method = reduced: Levenberg-Marquardt on the reduced model, each
-      /// fit confirmed by a full solve; the basis grows by the full modes
-      /// at every point that fails the confirmation (at most 10 rounds)
+      /// Method = reduced: rounds of Levenberg-Marquardt on the reduced
+      /// model of the full modes at the round's point and the one before,
+      /// each within a trust region about its point and confirmed by a
+      /// full solve at its end (at most 20 rounds)
       updating::Result
       fit_reduced(const std::vector<double> &start,
                   const updating::Options   &options);
@@ -203,7 +204,10 @@ namespace squeal
       std::unique_ptr<eigen::ReducedModel> reduced;
       std::vector<physics::PETScVector>    basis_candidates;
       static constexpr double              basis_factor = 1.5;
-      unsigned int                         n_reduced    = 0;
+      /// a reduced round moves a (log-scaled) parameter by this factor at
+      /// most
+      static constexpr double trust_factor = 4.;
+      unsigned int            n_reduced    = 0;
     };
   } // namespace analyses
 } // namespace squeal
