@@ -40,31 +40,13 @@ namespace
               const unsigned int n_pad,
               Triangulation<3>  &tria)
   {
-    std::vector<Point<3>>    vertices;
-    std::vector<CellData<3>> cells;
-    for (const auto &[n, z0, material] :
-         {std::tuple{n_disc, -1., scene::tribobrake::material::disc},
-          std::tuple{n_pad, 0., scene::tribobrake::material::pad}})
-      {
-        Triangulation<3> block;
-        GridGenerator::subdivided_hyper_rectangle(block,
-                                                  {n, n, 1u},
-                                                  Point<3>(0, 0, z0),
-                                                  Point<3>(1, 1, z0 + 1));
-        const unsigned int offset = vertices.size();
-        vertices.insert(vertices.end(),
-                        block.get_vertices().begin(),
-                        block.get_vertices().end());
-        for (const auto &cell : block.active_cell_iterators())
-          {
-            CellData<3> c;
-            for (const auto v : cell->vertex_indices())
-              c.vertices[v] = offset + cell->vertex_index(v);
-            c.material_id = material;
-            cells.push_back(c);
-          }
-      }
-    tria.create_triangulation(vertices, cells, SubCellData());
+    test_tools::stacked_blocks(n_disc,
+                               n_pad,
+                               1.,
+                               1.,
+                               scene::tribobrake::material::disc,
+                               scene::tribobrake::material::pad,
+                               tria);
     for (const auto &cell : tria.active_cell_iterators())
       for (const auto f : cell->face_indices())
         if (cell->face(f)->at_boundary() &&

@@ -54,31 +54,8 @@ namespace
   void
   write_blocks(const std::string &file)
   {
-    std::vector<Point<3>>    vertices;
-    std::vector<CellData<3>> cells;
-    for (const auto &[n, z0, material] :
-         {std::tuple{3u, -h, 0u}, std::tuple{2u, 0., 1u}})
-      {
-        Triangulation<3> block;
-        GridGenerator::subdivided_hyper_rectangle(block,
-                                                  {n, n, 1u},
-                                                  Point<3>(0, 0, z0),
-                                                  Point<3>(a, a, z0 + h));
-        const unsigned int offset = vertices.size();
-        vertices.insert(vertices.end(),
-                        block.get_vertices().begin(),
-                        block.get_vertices().end());
-        for (const auto &cell : block.active_cell_iterators())
-          {
-            CellData<3> c;
-            for (const auto v : cell->vertex_indices())
-              c.vertices[v] = offset + cell->vertex_index(v);
-            c.material_id = material;
-            cells.push_back(c);
-          }
-      }
     Triangulation<3> both;
-    both.create_triangulation(vertices, cells, SubCellData());
+    test_tools::stacked_blocks(3, 2, a, h, 0, 1, both);
     for (const auto &cell : both.active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary())

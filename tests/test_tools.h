@@ -7,6 +7,8 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -23,6 +25,8 @@
 #include <iomanip>
 #include <iostream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 namespace test_tools
 {
@@ -128,6 +132,49 @@ namespace test_tools
       return p;
     }
   };
+
+  /**
+   * Two blocks meeting at z = 0 without shared vertices (so that a contact
+   * pair or a mortar interface joins them, never the mesh): the lower one
+   * [0, w]^2 x [-h, 0] in n_lower x n_lower x 1 cells of material
+   * @p lower, the upper one [0, w]^2 x [0, h] in n_upper x n_upper x 1
+   * of material @p upper [m].
+   */
+  inline void
+  stacked_blocks(const unsigned int               n_lower,
+                 const unsigned int               n_upper,
+                 const double                     w,
+                 const double                     h,
+                 const dealii::types::material_id lower,
+                 const dealii::types::material_id upper,
+                 dealii::Triangulation<3>        &tria)
+  {
+    using namespace dealii;
+    std::vector<Point<3>>    vertices;
+    std::vector<CellData<3>> cells;
+    for (const auto &[n, z0, material] :
+         {std::tuple{n_lower, -h, lower}, std::tuple{n_upper, 0., upper}})
+      {
+        Triangulation<3> block;
+        GridGenerator::subdivided_hyper_rectangle(block,
+                                                  {n, n, 1u},
+                                                  Point<3>(0, 0, z0),
+                                                  Point<3>(w, w, z0 + h));
+        const unsigned int offset = vertices.size();
+        vertices.insert(vertices.end(),
+                        block.get_vertices().begin(),
+                        block.get_vertices().end());
+        for (const auto &cell : block.active_cell_iterators())
+          {
+            CellData<3> c;
+            for (const auto v : cell->vertex_indices())
+              c.vertices[v] = offset + cell->vertex_index(v);
+            c.material_id = material;
+            cells.push_back(c);
+          }
+      }
+    tria.create_triangulation(vertices, cells, SubCellData());
+  }
 
   /**
    * u^T A u for the field @p f (3 components, m) interpolated on

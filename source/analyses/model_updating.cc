@@ -548,6 +548,25 @@ namespace squeal
       return p;
     }
 
+    void
+    ModelUpdatingAnalysis::append_mode(updating::ModelModes          &result,
+                                       const unsigned int             c,
+                                       const parameters::ScalarPoint &p,
+                                       const double                   f,
+                                       std::vector<double>          &&d,
+                                       const physics::PETScVector    &phi,
+                                       const physics::PETScVector &zero) const
+    {
+      result.frequency.push_back(f);
+      result.derivative.push_back(std::move(d));
+      result.shape.push_back(observation ? (*observation)(phi) :
+                                           std::vector<double>());
+      result.configuration.push_back(c);
+      // named in every evaluation: a few per cent of the solve's time, and
+      // the names belong to exactly these modes
+      result.name.push_back(mode_name(model, p, phi, zero, nullptr, true));
+    }
+
     updating::ModelModes
     ModelUpdatingAnalysis::modes_at(const std::vector<double> &values)
     {
@@ -700,15 +719,7 @@ namespace squeal
                       w2 > 0. ? G(m, m) / (2 * std::sqrt(w2)) : 0.);
                     result.damping_derivative.push_back(std::move(dzeta));
                   }
-                result.frequency.push_back(f);
-                result.derivative.push_back(std::move(d));
-                result.shape.push_back(observation ? (*observation)(phi) :
-                                                     std::vector<double>());
-                result.configuration.push_back(c);
-                // named in every evaluation: a few per cent of the solve's
-                // time, and the names belong to exactly these modes
-                result.name.push_back(
-                  mode_name(model, p, phi, zero, nullptr, true));
+                append_mode(result, c, p, f, std::move(d), phi, zero);
               }
           }
       return result;
@@ -804,13 +815,7 @@ namespace squeal
                     zero.reinit(phi);
                     zero = 0.;
                   }
-                result.frequency.push_back(f);
-                result.derivative.push_back(std::move(d));
-                result.shape.push_back(observation ? (*observation)(phi) :
-                                                     std::vector<double>());
-                result.configuration.push_back(c);
-                result.name.push_back(
-                  mode_name(model, p, phi, zero, nullptr, true));
+                append_mode(result, c, p, f, std::move(d), phi, zero);
               }
           }
       ++n_reduced;

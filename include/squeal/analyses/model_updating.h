@@ -165,6 +165,17 @@ namespace squeal
       updating::Result
       fit_reduced(const std::vector<double> &start,
                   const updating::Options   &options);
+      /// appends one mode (frequency @p f [Hz], its derivatives @p d, the
+      /// M-normalised shape @p phi) of configuration @p c at @p p to
+      /// @p result, with its shape at the points and its name (collective)
+      void
+      append_mode(updating::ModelModes          &result,
+                  const unsigned int             c,
+                  const parameters::ScalarPoint &p,
+                  const double                   f,
+                  std::vector<double>          &&d,
+                  const physics::PETScVector    &phi,
+                  const physics::PETScVector    &zero) const;
       /// the point of configuration @p c at @p values, with the names of
       /// the parameters acting there and, per parameter, its index among
       /// them (-1: it does not act there)
