@@ -26,6 +26,25 @@ namespace squeal
   namespace analyses
   {
     using namespace dealii;
+
+    namespace
+    {
+      /**
+       * d zeta / dp of zeta = c / (2 omega), c = phi^T C phi (phi
+       * M-normalised), from c, omega^2 [1/s^2], phi^T C' phi [1/s], the
+       * shape's part phi^T C d phi [1/s] and d omega^2 / dp.
+       */
+      double
+      damping_ratio_slope(const double c,
+                          const double w2,
+                          const double dc,
+                          const double shape,
+                          const double dw2)
+      {
+        const double w = std::sqrt(w2);
+        return (dc + 2 * shape) / (2 * w) - c / (2 * w) * dw2 / (2 * w2);
+      }
+    } // namespace
     ModelUpdatingAnalysis::ModelUpdatingAnalysis(
       const parameters::AllParameters &prm,
       const ParameterHandler          &handler,
@@ -189,7 +208,8 @@ namespace squeal
                     for (unsigned int l = 0; l <= m; ++l)
                       G(l, m) = G(m, l) = modes.shape[l] * Aphi;
                     y.emplace_back(Aphi);
-                    static_solver.solve(Aphi, y.back());
+                    if (modes.frequency[m] <= f_max) // a target's mode
+                      static_solver.solve(Aphi, y.back());
                   }
               }
             for (unsigned int m = 0; m < n_modes; ++m)
@@ -268,10 +288,10 @@ namespace squeal
                         shape += computed - y[m] * v;
                         shape -= 0.5 * m_q * G(m, m);
                       }
-                    const double zeta = w > 0. ? G(m, m) / (2 * w) : 0.;
-                    dzeta.push_back(w > 0. ? (dc + 2 * shape) / (2 * w) -
-                                               zeta * dw2 / (2 * w2) :
-                                             0.);
+                    dzeta.push_back(
+                      w > 0. ?
+                        damping_ratio_slope(G(m, m), w2, dc, shape, dw2) :
+                        0.);
                   }
                 if (with_damping)
                   {
@@ -358,10 +378,8 @@ namespace squeal
                     for (unsigned int l = 0; l < r; ++l)
                       if (l != m && std::abs(w2 - W2[l]) > 1e-6 * w2)
                         shape += a[l] / (w2 - W2[l]) * G(m, l);
-                    const double w    = std::sqrt(w2);
-                    const double zeta = G(m, m) / (2 * w);
-                    dzeta.push_back((q.dot(dC[j] * q) + 2 * shape) / (2 * w) -
-                                    zeta * dw2 / (2 * w2));
+                    dzeta.push_back(damping_ratio_slope(
+                      G(m, m), w2, q.dot(dC[j] * q), shape, dw2));
                   }
                 if (with_damping)
                   {
