@@ -532,12 +532,13 @@ namespace squeal
         "Method",
         method,
         Patterns::Selection("reduced|full"),
-        "reduced: the Levenberg-Marquardt trials solve the model projected "
-        "on the frictionless modes (to 1.5 x Maximum frequency) of the full "
-        "solves so far; at the reduced fit's end a full solve confirms it: "
-        "where a paired mode's frequency differs by more than Reduced "
-        "tolerance, its modes join the basis and the fit goes on from there. "
-        "full: a full eigensolve at every trial.");
+        "reduced: in rounds, the Levenberg-Marquardt trials solve the model "
+        "projected on the frictionless modes (to 1.5 x Maximum frequency) of "
+        "the full solves at the round's point and the one before, each "
+        "parameter moving by a factor of 4 at most; a full solve confirms "
+        "each round's end, and the fit ends when every paired mode agrees "
+        "within Reduced tolerance and no parameter is held by that limit "
+        "(at most 20 rounds). full: a full eigensolve at every trial.");
       prm.declare_entry("Reduced tolerance",
                         str(reduced_tolerance),
                         Patterns::Double(1e-12, 0.1),
