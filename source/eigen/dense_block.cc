@@ -323,10 +323,27 @@ namespace squeal
       Eigen::VectorXd
       local_part(const PETScVector &v, const dealii::IndexSet &owned)
       {
-        Eigen::VectorXd x(owned.n_elements());
-        for (unsigned int k = 0; k < x.size(); ++k)
-          x[k] = v(owned.nth_index_in_set(k));
+        if (v.locally_owned_size() != owned.n_elements())
+          throw std::runtime_error(
+            "dense block: a vector does not own the expected rows");
+        const PetscScalar *a;
+        VecGetArrayRead(v, &a);
+        const Eigen::VectorXd x =
+          Eigen::Map<const Eigen::VectorXd>(a, owned.n_elements());
+        VecRestoreArrayRead(v, &a);
         return x;
+      }
+
+      void
+      set_local_part(PETScVector &v, const Eigen::VectorXd &x)
+      {
+        if (v.locally_owned_size() != static_cast<std::size_t>(x.size()))
+          throw std::runtime_error(
+            "dense block: a vector does not own the expected rows");
+        PetscScalar *a;
+        VecGetArray(v, &a);
+        Eigen::Map<Eigen::VectorXd>(a, x.size()) = x;
+        VecRestoreArray(v, &a);
       }
 
       std::vector<ProjectedPair>

@@ -84,9 +84,21 @@ namespace squeal
       void *
       shift_invert_with_mumps(void *st, const bool cholesky);
 
-      /** The locally owned entries of @p v, in the order of @p owned. */
+      /**
+       * The locally owned entries of @p v, in the order of @p owned (the
+       * contiguous range PETSc owns on this rank).
+       * @throws std::runtime_error if @p v does not own @p owned's size.
+       */
       Eigen::VectorXd
       local_part(const PETScVector &v, const dealii::IndexSet &owned);
+
+      /**
+       * Sets the locally owned entries of @p v (already laid out) to @p x,
+       * in the order of its owned range; no communication.
+       * @throws std::runtime_error if the sizes differ.
+       */
+      void
+      set_local_part(PETScVector &v, const Eigen::VectorXd &x);
 
       /** One eigenpair lambda [1/s], coordinates q of a projected problem. */
       struct ProjectedPair

@@ -400,6 +400,22 @@ namespace squeal
         }
       };
 
+      // The real and imaginary parts of the pairs' coordinates, r x m each
+      void
+      coordinates(const std::vector<internal::ProjectedPair> &pairs,
+                  const int                                   r,
+                  Eigen::MatrixXd                            &Qr,
+                  Eigen::MatrixXd                            &Qi)
+      {
+        Qr.resize(r, pairs.size());
+        Qi.resize(r, pairs.size());
+        for (unsigned int j = 0; j < pairs.size(); ++j)
+          {
+            Qr.col(j) = pairs[j].q.real();
+            Qi.col(j) = pairs[j].q.imag();
+          }
+      }
+
       // The relative residuals of the Ritz pairs (V q, lambda) on the full
       // model, and the residual vectors [Re r, Im r] of those above @p tol.
       std::vector<double>
@@ -408,13 +424,9 @@ namespace squeal
                 const double                                tol,
                 Eigen::MatrixXd                            &corrections)
       {
-        const int       m = pairs.size(), r = s.V.cols();
-        Eigen::MatrixXd Qr(r, m), Qi(r, m);
-        for (int j = 0; j < m; ++j)
-          {
-            Qr.col(j) = pairs[j].q.real();
-            Qi.col(j) = pairs[j].q.imag();
-          }
+        const int       m = pairs.size();
+        Eigen::MatrixXd Qr, Qi;
+        coordinates(pairs, s.V.cols(), Qr, Qi);
         const Eigen::MatrixXd Mr = s.WM * Qr, Mi = s.WM * Qi, Cr = s.WC * Qr,
                               Ci = s.WC * Qi, Kr = s.WK * Qr, Ki = s.WK * Qi;
         Eigen::MatrixXd Rr(Kr.rows(), m), Ri(Kr.rows(), m);
@@ -463,23 +475,20 @@ namespace squeal
                  const std::vector<internal::ProjectedPair> &pairs,
                  const std::vector<double>                  &res)
       {
+        const int       m = pairs.size();
+        Eigen::MatrixXd Qr, Qi;
+        coordinates(pairs, s.V.cols(), Qr, Qi);
+        const Eigen::MatrixXd  Xr = s.V * Qr, Xi = s.V * Qi;
         std::vector<EigenPair> result;
-        for (unsigned int j = 0; j < pairs.size(); ++j)
+        for (int j = 0; j < m; ++j)
           {
             EigenPair p;
             p.lambda   = pairs[j].lambda;
             p.residual = res[j];
             p.re.reinit(owned, s.comm);
             p.im.reinit(owned, s.comm);
-            const Eigen::VectorXd xr = s.V * pairs[j].q.real(),
-                                  xi = s.V * pairs[j].q.imag();
-            for (int k = 0; k < xr.size(); ++k)
-              {
-                p.re(owned.nth_index_in_set(k)) = xr[k];
-                p.im(owned.nth_index_in_set(k)) = xi[k];
-              }
-            p.re.compress(VectorOperation::insert);
-            p.im.compress(VectorOperation::insert);
+            internal::set_local_part(p.re, Xr.col(j));
+            internal::set_local_part(p.im, Xi.col(j));
             result.push_back(std::move(p));
           }
         return result;

@@ -433,13 +433,8 @@ namespace squeal
       const Eigen::VectorXd xr = V * q.real(), xi = V * q.imag();
       re.reinit(owned, comm);
       im.reinit(owned, comm);
-      for (unsigned int k = 0; k < owned.n_elements(); ++k)
-        {
-          re(owned.nth_index_in_set(k)) = xr[k];
-          im(owned.nth_index_in_set(k)) = xi[k];
-        }
-      re.compress(VectorOperation::insert);
-      im.compress(VectorOperation::insert);
+      internal::set_local_part(re, xr);
+      internal::set_local_part(im, xi);
     }
   } // namespace eigen
 } // namespace squeal
