@@ -501,6 +501,11 @@ namespace squeal
                                                  locally_owned_dofs,
                                                  comm,
                                                  locally_relevant_dofs);
+      part_template = std::make_unique<PETScMatrix>();
+      part_template->reinit(locally_owned_dofs,
+                            locally_owned_dofs,
+                            *pattern,
+                            comm);
 
       pcout << "Mesh: " << triangulation.n_active_cells() << " cells, "
             << dof_handler.n_dofs() << " DoFs (degree " << prm.mesh.fe_degree
@@ -611,6 +616,7 @@ namespace squeal
         }
       part_matrices.resize(next_part);
       pattern.reset();
+      part_template.reset();
 
       constrained_diagonal =
         set_constrained_rows(*this, parts, fixed_mass, fixed_stiffness);
@@ -642,7 +648,7 @@ namespace squeal
       if (next_part == part_matrices.size())
         part_matrices.push_back(std::make_unique<PETScMatrix>());
       PETScMatrix &m = *part_matrices[next_part++];
-      m.reinit(locally_owned_dofs, locally_owned_dofs, *pattern, comm);
+      m.reinit(*part_template);
       return m;
     }
 

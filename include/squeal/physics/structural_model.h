@@ -432,6 +432,10 @@ namespace squeal
       new_part_matrix();
       /// the common sparsity pattern of every part
       std::unique_ptr<dealii::DynamicSparsityPattern> pattern;
+      /// an empty PETSc matrix on that pattern, duplicated for each part
+      /// (walking the dynamic pattern once per part cost seconds at
+      /// degree 4)
+      std::unique_ptr<PETScMatrix> part_template;
       /// see parts()
       MatrixParts assembled;
       /// part_matrices used so far in the current assembly
