@@ -14,6 +14,7 @@
 
 #include "dense_block.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -596,13 +597,29 @@ namespace squeal
         return std::pow(2. * numbers::PI * f, 2);
       };
       const double sigma = -w_t * w_t;
+      // Undamped and frictionless at this point (C = 0, K = K_s): the
+      // eigenvalues are +-i omega of the symmetric modes, so the band's
+      // modes are the whole answer and the basis stops at f_max.
+      const auto c        = model.coefficients(point);
+      const bool undamped = !model.modal.active() &&
+                            std::all_of(c.damping.begin(),
+                                        c.damping.end(),
+                                        [](const double d) { return d == 0.; });
+      const bool symmetric = undamped && c.stiffness == c.symmetric_stiffness;
       // the basis holds the modally damped modes too
       const double f_top =
-        std::max(band.basis_factor * band.f_max,
-                 model.modal.active() ? model.modal.cutoff : 0.);
+        symmetric ? band.f_max :
+                    std::max(band.basis_factor * band.f_max,
+                             model.modal.active() ? model.modal.cutoff : 0.);
       const double top    = square(f_top);
-      const auto   counts = count_eigenvalues_below(
-        K_s, M, {sigma, square(band.f_min), square(band.f_max), top});
+      auto         counts = count_eigenvalues_below(
+        K_s,
+        M,
+        symmetric ? std::vector<double>{sigma, square(band.f_min), top} :
+                            std::vector<double>{
+                              sigma, square(band.f_min), square(band.f_max), top});
+      if (symmetric) // the top is f_max
+        counts.push_back(counts.back());
       if (counts[0] > 0)
         throw std::runtime_error(
           "full solver: the stiffness without friction has " +
@@ -653,12 +670,13 @@ namespace squeal
       // static corrections of the damping and the friction forces
       // (K - K_s) Phi = K Phi - M Phi Omega^2 (V = Phi to the eigensolver's
       // tolerance: enough for a direction of the subspace)
-      {
-        const int       m = s.V.cols();
-        Eigen::MatrixXd forces(n, 2 * m);
-        forces << s.WC, s.WK - s.WM * omega2.asDiagonal();
-        s.append(internal::solve_block(factorised, K_s, forces));
-      }
+      if (!symmetric)
+        {
+          const int       m = s.V.cols();
+          Eigen::MatrixXd forces(n, 2 * m);
+          forces << s.WC, s.WK - s.WM * omega2.asDiagonal();
+          s.append(internal::solve_block(factorised, K_s, forces));
+        }
       const double t_projection = seconds_since(start) - t_symmetric;
 
       std::vector<internal::ProjectedPair> pairs;
@@ -692,7 +710,11 @@ namespace squeal
             << " modes in the band; symmetric problem (no friction) "
             << r.symmetric_in_band << " in the band and "
             << r.symmetric_in_basis << " up to " << f_top
-            << " Hz by Sylvester inertia, all in the basis; " << r.basis_size
+            << " Hz by Sylvester inertia, all in the basis"
+            << (symmetric ? " (undamped and frictionless: the band's modes "
+                            "are the eigenpairs)" :
+                            "")
+            << "; " << r.basis_size
             << " basis vectors, largest relative residual "
             << r.largest_residual << " after " << r.rounds << " rounds ("
             << r.above_tolerance << " above " << band.residual_tolerance

@@ -35,6 +35,16 @@
  *    come from the stored products M V, C V, K V of the subspace V, so a
  *    round's sparse work is the new block's products only.
  *
+ * At an undamped frictionless point (every damping coefficient 0, no modal
+ * damping, no friction part: C = 0 and K = K_s) the eigenvalues are
+ * +-i omega of the symmetric modes, so b is taken as 1 (the basis is the
+ * band's modes, counted at f_min and f_max) and step 3 adds no static
+ * corrections; steps 3 and 4 still check every pair's residual.
+ *
+ * The products of the sparse matrices with the dense blocks are Eigen's
+ * row-major sparse x dense product on PETSc's AIJ arrays
+ * (eigen::internal::multiply).
+ *
  * The returned pairs carry their residuals; the solver does not throw when
  * some stay above the tolerance (FullSolveReport::above_tolerance says how
  * many): the analysis decides (analyses/cea.h).
