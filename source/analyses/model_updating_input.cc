@@ -25,6 +25,18 @@ namespace squeal
 
     namespace
     {
+      /** The non-blank items of a parameter's `;`-separated list. */
+      std::vector<std::string>
+      list_items(const std::string &text)
+      {
+        std::vector<std::string> result;
+        std::istringstream       items(text);
+        for (std::string item; std::getline(items, item, ';');)
+          if (item.find_first_not_of(" \t") != std::string::npos)
+            result.push_back(item);
+        return result;
+      }
+
       /** The fields of one CSV line; a field in double quotes may hold
        * commas (a doubled quote inside is one quote). */
       std::vector<std::string>
@@ -159,11 +171,8 @@ namespace squeal
     parse_configurations(const std::string &text)
     {
       std::vector<Configuration> result;
-      std::istringstream         items(text);
-      for (std::string item; std::getline(items, item, ';');)
+      for (const std::string &item : list_items(text))
         {
-          if (item.find_first_not_of(" \t") == std::string::npos)
-            continue;
           const std::string where =
             "Model updating/Configurations, item '" + item + "'";
           const auto    colon = item.find(':');
@@ -320,11 +329,8 @@ namespace squeal
     parse_updating_parameters(const std::string &text)
     {
       std::vector<updating::Parameter> result;
-      std::istringstream               items(text);
-      for (std::string item; std::getline(items, item, ';');)
+      for (const std::string &item : list_items(text))
         {
-          if (item.find_first_not_of(" \t") == std::string::npos)
-            continue;
           const std::string where =
             "Model updating/Parameters, item '" + item + "'";
           const auto colon = item.find(':');

@@ -179,11 +179,15 @@ namespace squeal
           md << '\n';
         }
 
+      // a header: the leading columns, then one per parameter
+      const auto header = [&](io::OutputFile &f, const char *leading) {
+        f << leading;
+        for (const auto &q : parameters)
+          f << ',' << q.name;
+        f << '\n' << std::setprecision(10);
+      };
       io::OutputFile id(work_dir + "/identifiability.csv");
-      id << "index,singular_value,relative";
-      for (const auto &q : parameters)
-        id << ',' << q.name;
-      id << '\n' << std::setprecision(10);
+      header(id, "index,singular_value,relative");
       for (unsigned int k = 0; k < r.singular_value.size(); ++k)
         {
           id << k << ',' << r.singular_value[k] << ','
@@ -196,10 +200,7 @@ namespace squeal
         }
 
       io::OutputFile hi(work_dir + "/history.csv");
-      hi << "trial,accepted,cost,damping";
-      for (const auto &q : parameters)
-        hi << ',' << q.name;
-      hi << '\n' << std::setprecision(10);
+      header(hi, "trial,accepted,cost,damping");
       for (const auto &h : r.history)
         {
           hi << h.index << ',' << (h.accepted ? 1 : 0) << ',' << h.cost << ','

@@ -159,39 +159,57 @@ namespace squeal
         using RowBlock = Eigen::
           Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-        // The rows colmap[i] of the distributed block whose local rows are
-        // @p local (row-major, w columns), gathered from their owners.
-        RowBlock
-        ghost_rows(Mat             a,
-                   const RowBlock &local,
-                   const PetscInt  n_ghost,
-                   const PetscInt *colmap)
+        // Gathers the rows colmap[i] of a distributed row-major block from
+        // their owners: one PETSc star forest per product, one broadcast per
+        // block of columns (collective: every rank of an MPIAIJ matrix).
+        class GhostRows
         {
-          const MPI_Comm comm =
-            PetscObjectComm(reinterpret_cast<PetscObject>(a));
-          RowBlock     ghosts(n_ghost, local.cols());
-          PetscLayout  layout;
-          PetscSF      sf;
-          MPI_Datatype unit;
-          bool         ok = MatGetLayouts(a, nullptr, &layout) == 0 &&
-                    PetscSFCreate(comm, &sf) == 0;
-          ok = ok &&
-               PetscSFSetGraphLayout(
-                 sf, layout, n_ghost, nullptr, PETSC_COPY_VALUES, colmap) == 0;
-          MPI_Type_contiguous(local.cols(), MPI_DOUBLE, &unit);
-          MPI_Type_commit(&unit);
-          ok = ok &&
-               PetscSFBcastBegin(
-                 sf, unit, local.data(), ghosts.data(), MPI_REPLACE) == 0 &&
-               PetscSFBcastEnd(
-                 sf, unit, local.data(), ghosts.data(), MPI_REPLACE) == 0;
-          MPI_Type_free(&unit);
-          PetscSFDestroy(&sf);
-          if (!ok)
-            throw std::runtime_error(
-              "dense block: gathering the ghost rows failed");
-          return ghosts;
-        }
+        public:
+          GhostRows(Mat a, const PetscInt n_ghost, const PetscInt *colmap)
+            : n_ghost(n_ghost)
+          {
+            PetscLayout layout;
+            if (MatGetLayouts(a, nullptr, &layout) != 0 ||
+                PetscSFCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a)),
+                              &sf) != 0 ||
+                PetscSFSetGraphLayout(
+                  sf, layout, n_ghost, nullptr, PETSC_COPY_VALUES, colmap) != 0)
+              throw std::runtime_error(
+                "dense block: the ghost-row star forest failed");
+          }
+
+          ~GhostRows()
+          {
+            PetscSFDestroy(&sf);
+          }
+
+          GhostRows(const GhostRows &) = delete;
+          GhostRows &
+          operator=(const GhostRows &) = delete;
+
+          RowBlock
+          gather(const RowBlock &local) const
+          {
+            RowBlock     ghosts(n_ghost, local.cols());
+            MPI_Datatype unit;
+            MPI_Type_contiguous(local.cols(), MPI_DOUBLE, &unit);
+            MPI_Type_commit(&unit);
+            const bool ok =
+              PetscSFBcastBegin(
+                sf, unit, local.data(), ghosts.data(), MPI_REPLACE) == 0 &&
+              PetscSFBcastEnd(
+                sf, unit, local.data(), ghosts.data(), MPI_REPLACE) == 0;
+            MPI_Type_free(&unit);
+            if (!ok)
+              throw std::runtime_error(
+                "dense block: gathering the ghost rows failed");
+            return ghosts;
+          }
+
+        private:
+          PetscInt n_ghost;
+          PetscSF  sf = nullptr;
+        };
       } // namespace
 
       Eigen::MatrixXd
@@ -222,13 +240,14 @@ namespace squeal
         PetscInt n_ghost = 0;
         if (off_diagonal)
           MatGetSize(off_diagonal, nullptr, &n_ghost);
-        const bool ghosts_anywhere =
-          is_mpi && dealii::Utilities::MPI::max(static_cast<int>(n_ghost > 0),
-                                                A.get_mpi_communicator()) > 0;
-        const CsrView                  d(diagonal);
-        std::unique_ptr<const CsrView> o;
-        if (off_diagonal)
-          o = std::make_unique<const CsrView>(off_diagonal);
+        const CsrView                    d(diagonal);
+        std::unique_ptr<const CsrView>   o;
+        std::unique_ptr<const GhostRows> ghosts;
+        if (is_mpi)
+          {
+            o      = std::make_unique<const CsrView>(off_diagonal);
+            ghosts = std::make_unique<const GhostRows>(a, n_ghost, colmap);
+          }
         Eigen::MatrixXd result(B.rows(), B.cols());
         // blocks of 64 columns keep the rows of B that a row of A reads in
         // cache
@@ -238,12 +257,8 @@ namespace squeal
             const Eigen::Index w       = std::min(width, B.cols() - c);
             const RowBlock     local   = B.middleCols(c, w);
             RowBlock           product = d.map() * local;
-            if (ghosts_anywhere)
-              {
-                const RowBlock g = ghost_rows(a, local, n_ghost, colmap);
-                if (n_ghost > 0)
-                  product += o->map() * g;
-              }
+            if (ghosts)
+              product += o->map() * ghosts->gather(local);
             result.middleCols(c, w) = product;
           }
         return result;
