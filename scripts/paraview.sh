@@ -16,4 +16,19 @@ if ! command -v pvbatch > /dev/null || ! command -v xvfb-run > /dev/null ||
   exit 77
 fi
 export PYTHONPATH="$modules${PYTHONPATH:+:$PYTHONPATH}"
-exec xvfb-run -a pvbatch "$@"
+# Debian's pvbatch 5.11 now and then aborts while creating its window under
+# Xvfb (vtkXOpenGLRenderWindow::CreateAWindow); that start is tried again,
+# at most three times, and only the last attempt's messages are shown.
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+for attempt in 1 2 3; do
+  status=0
+  xvfb-run -a pvbatch "$@" 2> "$log" || status=$?
+  if [ "$status" -ne 0 ] && [ "$attempt" -lt 3 ] &&
+     grep -q "CreateAWindow" "$log"; then
+    echo "paraview.sh: pvbatch could not open its window under Xvfb; starting it again" >&2
+    continue
+  fi
+  cat "$log" >&2
+  exit "$status"
+done
