@@ -236,6 +236,74 @@ main(int argc, char **argv)
       H5Sclose(space);
     },
     "25 nodes x 100000000000 samples need 1.8e+05 GB to read");
+
+  // Two pad faces: nodes 0-9 on 'inner pad', 10-24 on 'outer pad'.
+  io::ContactHistory two = h;
+  two.face_names         = {"inner pad", "outer pad"};
+  two.face.assign(25, 1);
+  std::fill(two.face.begin(), two.face.begin() + 10, 0);
+  io::write_contact_history("two_faces.h5", two);
+  {
+    io::ContactHistory t = io::read_contact_history("two_faces.h5");
+    check("round trip: faces",
+          t.face == two.face && t.face_names == two.face_names,
+          1.,
+          0.);
+    check("the one-face history has no /face", r.face.empty(), 1., 0.);
+    io::ContactHistory inner = t;
+    inner.keep_face("inner pad");
+    check("keep_face('inner pad'): its rows are nodes 0-9",
+          inner.n_nodes() == 10 && inner.p_N[0] == h.p_N[0] &&
+            inner.t_T2[9] == h.t_T2[9] && inner.status[4] == h.status[4],
+          1.,
+          0.);
+    t.keep_face("outer pad");
+    check("keep_face('outer pad'): nodes", t.n_nodes(), 15., 0.);
+    check("keep_face: its rows are nodes 10-24",
+          t.coordinates.front() == h.coordinates[10] &&
+            t.p_N.back() == h.p_N[24] && t.status[3] == h.status[13] &&
+            t.t_T1[0] == h.t_T1[10] &&
+            t.slip_velocity[14] == h.slip_velocity[24],
+          1.,
+          0.);
+    check("keep_face: one face left",
+          t.face_names.size() == 1 &&
+            t.face == std::vector<unsigned int>(15, 0),
+          1.,
+          0.);
+    std::string message;
+    try
+      {
+        t.keep_face("inner pad");
+      }
+    catch (const std::exception &e)
+      {
+        message = e.what();
+      }
+    check("an absent face is refused, naming the faces there are",
+          message.find("no pad face 'inner pad'") != std::string::npos &&
+            message.find("'outer pad'") != std::string::npos,
+          1.,
+          0.);
+  }
+  expect_error(
+    "face index beyond the names",
+    two,
+    [](hid_t f) {
+      std::vector<int> face(25, 0);
+      face[12] = 2;
+      H5Ldelete(f, "/face", H5P_DEFAULT);
+      const hsize_t n = 25;
+      H5LTmake_dataset_int(f, "/face", 1, &n, face.data());
+      H5LTset_attribute_string(f, "/face", "names", "inner pad;outer pad");
+    },
+    "dataset /face: value 2 at node 12");
+  expect_error(
+    "face without names",
+    two,
+    [](hid_t f) { H5Adelete_by_name(f, "/face", "names", H5P_DEFAULT); },
+    "dataset /face needs a string attribute 'names'");
+
   {
     std::ofstream("not_hdf5.h5") << "plain text, not HDF5\n";
     std::string message;

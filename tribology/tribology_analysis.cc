@@ -252,6 +252,34 @@ namespace squeal
                     << " samples at " << history.sampling_rate << " Hz"
                     << std::endl;
         }
+      if (history.n_nodes() > 0)
+        {
+          const std::string where =
+            "Contact history/File '" + prm.history.file + "'";
+          if (prm.history.face.empty() && history.face_names.size() > 1)
+            {
+              std::string list;
+              for (const std::string &n : history.face_names)
+                list += (list.empty() ? "'" : ", '") + n + "'";
+              throw std::runtime_error(
+                where + " holds " + std::to_string(history.face_names.size()) +
+                " pad faces (" + list +
+                "): set Contact history/Face to one of them");
+            }
+          if (!prm.history.face.empty())
+            try
+              {
+                history.keep_face(prm.history.face);
+              }
+            catch (const std::exception &e)
+              {
+                throw std::runtime_error(where +
+                                         ", Contact history/Face: " + e.what());
+              }
+          if (!history.face_names.empty())
+            std::cout << "Pad face '" << history.face_names.front()
+                      << "': " << history.n_nodes() << " nodes" << std::endl;
+        }
       if (history.n_nodes() > 0 && prm.history.start_time > 0.)
         {
           const std::size_t first = std::lower_bound(history.time.begin(),

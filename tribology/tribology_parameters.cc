@@ -46,6 +46,13 @@ namespace squeal
                         Double(0.),
                         "Samples before this time [s] are dropped (the load "
                         "ramp).");
+      prm.declare_entry(
+        "Face",
+        face,
+        Anything(),
+        "The pad face to analyse: the name of its contact pair in the scene "
+        "(e.g. 'inner pad'); the history's other faces are dropped. Empty: "
+        "the history's only face (a history of several faces needs a name).");
       prm.leave_subsection();
     }
 
@@ -55,6 +62,7 @@ namespace squeal
       prm.enter_subsection("Contact history");
       file       = prm.get("File");
       start_time = prm.get_double("Start time");
+      face       = prm.get("Face");
       prm.leave_subsection();
     }
 

@@ -434,6 +434,13 @@ namespace squeal
       history.coordinates.clear();
       for (const auto &x : mortar.slave_points)
         history.coordinates.push_back({{x[0], x[1], x[2]}});
+      // each node's pad face: its contact pair
+      history.face_names.clear();
+      for (const scene::ContactPair &p : model.scene->contact_pairs)
+        history.face_names.push_back(p.name);
+      history.face.assign(mortar.n_slave(), 0);
+      if (!mortar.slave_pair.empty())
+        history.face.assign(mortar.slave_pair.begin(), mortar.slave_pair.end());
       for (unsigned int c = 0; c < 3; ++c)
         {
           history.sliding_direction[c] = sliding[c];

@@ -12,8 +12,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -240,6 +242,18 @@ namespace squeal
       if (status.size() != n_nodes())
         bad("dataset /status has " + std::to_string(status.size()) +
             " rows for " + std::to_string(n_nodes()) + " nodes");
+      if (!face.empty() && face.size() != n_nodes())
+        bad("dataset /face has " + std::to_string(face.size()) +
+            " entries for " + std::to_string(n_nodes()) + " nodes");
+      for (std::size_t i = 0; i < face.size(); ++i)
+        if (face[i] >= face_names.size())
+          bad("dataset /face: value " + std::to_string(face[i]) + " at node " +
+              std::to_string(i) + " but " + std::to_string(face_names.size()) +
+              " names in its attribute 'names'");
+      for (const std::string &name : face_names)
+        if (name.empty() || name.find(';') != std::string::npos)
+          bad("dataset /face: the face name '" + name +
+              "' is empty or holds ';'");
       for (std::size_t i = 0; i < n_nodes(); ++i)
         {
           if (status[i].size() != n_samples())
@@ -251,6 +265,47 @@ namespace squeal
                   std::to_string(i) +
                   " (allowed: 0 separated, 1 stick, 2 slip)");
         }
+    }
+
+    void
+    ContactHistory::keep_face(const std::string &name)
+    {
+      const auto named = std::find(face_names.begin(), face_names.end(), name);
+      if (named == face_names.end())
+        {
+          std::string list;
+          for (const std::string &n : face_names)
+            list += (list.empty() ? "'" : ", '") + n + "'";
+          throw std::runtime_error(
+            "the contact history has no pad face '" + name + "' (" +
+            (list.empty() ? std::string("it holds one unnamed face") :
+                            "its faces: " + list) +
+            ")");
+        }
+      const unsigned int keep = named - face_names.begin();
+      std::size_t        kept = 0;
+      for (std::size_t i = 0; i < n_nodes(); ++i)
+        if (face[i] == keep)
+          {
+            if (kept == i) // no self-move: it would empty the rows
+              {
+                ++kept;
+                continue;
+              }
+            coordinates[kept]   = coordinates[i];
+            p_N[kept]           = std::move(p_N[i]);
+            t_T1[kept]          = std::move(t_T1[i]);
+            t_T2[kept]          = std::move(t_T2[i]);
+            slip_velocity[kept] = std::move(slip_velocity[i]);
+            status[kept]        = std::move(status[i]);
+            ++kept;
+          }
+      for (auto *rows : {&p_N, &t_T1, &t_T2, &slip_velocity})
+        rows->resize(kept);
+      coordinates.resize(kept);
+      status.resize(kept);
+      face.assign(kept, 0);
+      face_names = {name};
     }
 
     std::array<double, 2>
@@ -310,6 +365,18 @@ namespace squeal
               0 ||
             H5LTset_attribute_string(f.id, "/", "format", format_name) < 0)
           fail(filename, "cannot write the file");
+        if (!h.face.empty())
+          {
+            const std::vector<int> face(h.face.begin(), h.face.end());
+            const hsize_t          n = face.size();
+            std::string            names;
+            for (const std::string &name : h.face_names)
+              names += (names.empty() ? "" : ";") + name;
+            if (H5LTmake_dataset_int(f.id, "/face", 1, &n, face.data()) < 0 ||
+                H5LTset_attribute_string(
+                  f.id, "/face", "names", names.c_str()) < 0)
+              fail(filename, "cannot write dataset /face");
+          }
       }
       std::filesystem::rename(tmp, filename);
     }
@@ -390,6 +457,46 @@ namespace squeal
         h.status[i].assign(status.begin() + i * t_shape[0],
                            status.begin() + (i + 1) * t_shape[0]);
 
+      if (H5LTfind_dataset(f.id, "face") > 0)
+        {
+          H5T_class_t face_class = H5T_NO_CLASS;
+          if (dataset_shape(f.id, filename, "/face", &face_class) !=
+                std::vector<hsize_t>{n_nodes} ||
+              face_class != H5T_INTEGER)
+            fail(filename, "dataset /face must hold n_nodes integers");
+          std::vector<int> face(n_nodes);
+          if (H5LTread_dataset_int(f.id, "/face", face.data()) < 0)
+            fail(filename, "cannot read dataset /face");
+          for (std::size_t i = 0; i < n_nodes; ++i)
+            if (face[i] < 0)
+              fail(filename,
+                   "dataset /face: negative value at node " +
+                     std::to_string(i));
+          h.face.assign(face.begin(), face.end());
+          hsize_t     dims = 0;
+          H5T_class_t cls;
+          std::size_t size = 0;
+          if (H5LTget_attribute_info(
+                f.id, "/face", "names", &dims, &cls, &size) < 0 ||
+              cls != H5T_STRING)
+            fail(filename,
+                 "dataset /face needs a string attribute 'names' (the pad "
+                 "faces, separated by ';')");
+          std::string names(size + 1, '\0');
+          if (H5LTget_attribute_string(f.id, "/face", "names", names.data()) <
+              0)
+            fail(filename, "cannot read attribute 'names' of /face");
+          names.resize(std::strlen(names.c_str()));
+          std::size_t begin = 0;
+          while (true)
+            {
+              const std::size_t end = names.find(';', begin);
+              h.face_names.push_back(names.substr(begin, end - begin));
+              if (end == std::string::npos)
+                break;
+              begin = end + 1;
+            }
+        }
       h.sampling_rate =
         read_attribute(f.id, filename, "sampling_rate", 1).front();
       h.sliding_direction =

@@ -10,11 +10,16 @@ radius 100 mm, each held in-plane at its back and pressed by 100 N).
 - 3 ms braking: both pads pressed (mean normal force 2 x 100 N after the
   ramp, 5 %); |F_T| <= mu F_N at every sample (1e-9) and F_T >= mu F_N
   cos(atan(5 / 95)) while every node slips after the ramp (the disc's
-  velocity turns by that angle across a pad).
+  velocity turns by that angle across a pad);
+- its contact history names each node's pad face: squeal-tribology refuses
+  it without Contact history/Face, naming both faces, and with an unknown
+  face; each face alone gives its own damage.csv whose nodes mirror the
+  other face's, with the same mean pressure per node (1e-6 of the peak).
 Usage: check_two_pads.py SQUEAL WORK_DIR"""
 import csv
 import math
 import os
+import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -214,4 +219,62 @@ err = max((max(0., low * 0.5 * float(r["normal_force_N"]) -
 check("braking: mu F_N cos(3 deg) <= F_T while every node slips",
       len(slipping) > 10 and err <= 1e-9 * 200.,
       f"{len(slipping)} samples, largest shortfall {err:.2e} N", show=True)
+
+# Damage maps of each pad face from the contact history.
+tribology = os.path.join(os.path.dirname(squeal), "squeal-tribology")
+history = os.path.join(out, "contact_history.h5")
+
+
+def run_tribology(face):
+    name = "tribology_" + (face or "none")
+    with open(name + ".prm", "w") as f:
+        f.write(f"""subsection Contact history
+  set File = {history}
+  set Face = {face}
+  set Start time = 1.5e-3
+end
+subsection Images
+  set Files =
+end
+subsection Output
+  set Directory = {name}
+  set Overwrite = true
+end
+""")
+    r = subprocess.run([tribology, name + ".prm"], capture_output=True,
+                       text=True)
+    return r, os.path.join(name, "damage.csv")
+
+
+r, _ = run_tribology("")
+check("tribology: a history of two faces needs Contact history/Face",
+      r.returncode != 0 and "'top', 'bottom'" in r.stderr + r.stdout and
+      "Contact history/Face" in r.stderr + r.stdout, r.stderr.strip(),
+      show=True)
+r, _ = run_tribology("left")
+check("tribology: an unknown face is refused, naming the faces",
+      r.returncode != 0 and "no pad face 'left'" in r.stderr + r.stdout,
+      r.stderr.strip(), show=True)
+faces = {}
+for face in ("top", "bottom"):
+    r, path = run_tribology(face)
+    rows = []
+    if r.returncode == 0:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+    faces[face] = rows
+    check(f"tribology: face '{face}' alone", r.returncode == 0 and
+          len(rows) == 9, f"{len(rows)} nodes; {r.stderr.strip()}", show=True)
+top, bottom = faces["top"], faces["bottom"]
+key = lambda r: (round(float(r["x_m"]), 7), round(float(r["y_m"]), 7))  # noqa
+mirror = {key(r): float(r["mean_p_Pa"]) for r in bottom}
+peak = max((float(r["mean_p_Pa"]) for r in top), default=0.)
+worst = max((abs(float(r["mean_p_Pa"]) - mirror.get(key(r), math.inf))
+             for r in top), default=math.inf)
+zs = {round(float(r["z_m"]), 7) for r in top} & \
+    {round(float(r["z_m"]), 7) for r in bottom}
+check("tribology: the faces mirror each other (mean pressure per node)",
+      len(top) == len(bottom) and peak > 0. and worst <= 1e-6 * peak and
+      not zs, f"{len(top)} nodes each, peak {peak:.4g} Pa, largest "
+      f"difference {worst:.2e} Pa", show=True)
 finish()

@@ -17,7 +17,11 @@
  * | `/t_T2` | n_nodes x n_samples | double | Pa (traction along the radial direction) |
  * | `/slip_velocity` | n_nodes x n_samples | double | m/s |
  * | `/status` | n_nodes x n_samples | int | 0 separated, 1 stick, 2 slip |
+ * | `/face` (optional) | n_nodes | int | index of the node's pad face |
  *
+ * `/face` has a string attribute `names`: the pad faces (the scene's contact
+ * pairs, e.g. `inner pad;outer pad`), separated by `;`. A file without it
+ * holds one unnamed face.
  * Root attributes: `sampling_rate` (double, Hz), `sliding_direction` and
  * `radial_direction` (3 doubles each, unit vectors: the pad-face frame of the
  * maps), `format` (string, "squeal contact history 1"). Every dataset carries
@@ -45,6 +49,12 @@ namespace squeal
       std::vector<std::vector<double>> t_T2;          ///< [node][sample], Pa
       std::vector<std::vector<double>> slip_velocity; ///< [node][sample], m/s
       std::vector<std::vector<int>>    status;        ///< [node][sample]
+      /// [node]: index into face_names of the node's pad face; empty: one
+      /// unnamed face
+      std::vector<unsigned int> face;
+      /// names of the pad faces (the scene's contact pairs), none of them
+      /// empty or containing ';'
+      std::vector<std::string> face_names;
 
       /** Number of slave (pad-face) nodes. */
       std::size_t
@@ -67,6 +77,16 @@ namespace squeal
        */
       void
       check(const std::string &where) const;
+
+      /**
+       * Keeps only the nodes of the pad face named @p name (their rows of
+       * every dataset, in order); afterwards the history holds that one
+       * face.
+       * @throws std::runtime_error if there is no face of that name, naming
+       * the faces there are.
+       */
+      void
+      keep_face(const std::string &name);
 
       /** Pad-face coordinates of a node: (position . sliding, position .
        * radial) [m]: the x and y axes of every map. */

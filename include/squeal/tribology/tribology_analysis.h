@@ -35,6 +35,9 @@ namespace squeal
       /// damage analysis (images only).
       std::string file       = "synthetic";
       double      start_time = 0.; ///< s, earlier samples (the ramp) dropped
+      /// the pad face (contact pair name) to analyse; empty: the history's
+      /// only face
+      std::string face;
       /** Declares the subsection's entries with defaults, ranges, help. */
       void
       declare_parameters(ParameterHandler &prm) const;
