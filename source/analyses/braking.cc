@@ -124,7 +124,8 @@ namespace squeal
           "Transient/Stiffness product = sparse is serial (the assembled "
           "matrix is copied to one process); use matrix-free under mpirun");
       prepare_work_dir();
-      model.lumped_springs = true; // the matrix-free product grounds each DoF
+      // springs spread over a face act at its nodes, as the lumped mass
+      model.lumped_springs = true;
       model.setup_and_assemble(pcout);
       if (!model.scene->ties.empty())
         throw std::runtime_error(
@@ -315,35 +316,17 @@ namespace squeal
             std::copy(out->begin(), out->end(), y.begin());
           };
         }
-      // Anisotropic bodies: the assembled matrix only (the matrix-free
-      // operator knows isotropic bodies).
-      for (const scene::Body &b : model.scene->bodies)
-        if (b.law.anisotropic)
-          {
-            if (tr.stiffness_product == "matrix-free")
-              throw std::runtime_error(
-                "body '" + b.name +
-                "' is anisotropic: the braking run's matrix-free product "
-                "handles isotropic bodies; set Transient/Stiffness product = "
-                "sparse (serial runs)");
-            pcout << "Stiffness product: sparse (anisotropic body '" << b.name
-                  << "')" << std::endl;
-            return sparse_product;
-          }
       {
+        // the springs' entries in this rank's rows (to the ground, between
+        // two bodies, or spread over a face), the fixed rows left out
         physics::PETScMatrix ks;
         model.parts().springs(nominal, ks);
-        Vector<double> springs(n);
+        std::vector<ElasticityOperator::SpringEntry> springs;
         for (const auto i : model.locally_owned_dofs)
-          for (auto e = ks.begin(i); e != ks.end(i); ++e)
-            if (e->column() == i && !fixed[i])
-              springs[i] = e->value();
-            else if (e->value() != 0. && !fixed[i])
-              throw std::runtime_error(
-                "the scene's springs couple two DoFs (springs between two "
-                "bodies, or spread over a face): the matrix-free product "
-                "takes springs to ground at single nodes; set "
-                "Transient/Stiffness product = sparse (serial runs)");
+          if (!fixed[i])
+            for (auto e = ks.begin(i); e != ks.end(i); ++e)
+              if (e->value() != 0.)
+                springs.push_back({i, e->column(), e->value()});
         matrix_free = std::make_unique<ElasticityOperator>(
           model.dof_handler,
           model.mapping,
@@ -353,7 +336,13 @@ namespace squeal
               model.scene->youngs_modulus(id, nominal),
               model.scene->body(id).material.poisson_ratio);
           },
-          springs);
+          springs,
+          [this, nominal](const types::material_id id, const Point<3> &x)
+            -> std::optional<SymmetricTensor<4, 3>> {
+            if (!model.scene->body(id).law.anisotropic)
+              return std::nullopt;
+            return model.scene->stiffness_tensor(id, x, nominal);
+          });
       }
       const StiffnessProduct free_product = [this](DistributedVector       &y,
                                                    const DistributedVector &v) {

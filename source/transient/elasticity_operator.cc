@@ -1,13 +1,16 @@
 // Matrix-free stiffness product of linear elasticity (see
-// elasticity_operator.h): at each quadrature point the stress
-// sigma = 2 mu eps + lambda tr(eps) I of the symmetric gradient is tested
-// against the symmetric gradients of the shape functions.
+// elasticity_operator.h): at each quadrature point the stress of the
+// symmetric gradient, sigma = 2 mu eps + lambda tr(eps) I (isotropic) or
+// C : eps (anisotropic), is tested against the symmetric gradients of the
+// shape functions; the springs' few entries are added afterwards.
 
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/matrix_free/fe_evaluation.h>
 
 #include <squeal/transient/elasticity_operator.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace squeal
@@ -21,30 +24,96 @@ namespace squeal
       const Mapping<3>                &mapping,
       const AffineConstraints<double> &constraints,
       const std::function<std::pair<double, double>(types::material_id)> &lame,
-      const Vector<double> &spring_diagonal)
-      : springs(spring_diagonal)
-      , degree(dof_handler.get_fe().degree)
+      const std::vector<SpringEntry> &spring_entries,
+      const TensorOf                 &tensor)
+      : degree(dof_handler.get_fe().degree)
     {
       if (degree < 1 || degree > 3)
         throw std::runtime_error(
           "the matrix-free stiffness product supports degrees 1-3 (got " +
           std::to_string(degree) + ")");
       typename MatrixFree<3, double>::AdditionalData additional;
-      additional.mapping_update_flags = update_gradients | update_JxW_values;
+      additional.mapping_update_flags =
+        update_gradients | update_JxW_values | update_quadrature_points;
       data.reinit(
         mapping, dof_handler, constraints, QGauss<1>(degree + 1), additional);
       data.initialize_dof_vector(in);
       data.initialize_dof_vector(out);
-      cell_lame.resize(data.n_cell_batches());
-      for (unsigned int b = 0; b < data.n_cell_batches(); ++b)
-        for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(b);
-             ++v)
-          {
-            const auto [l, m] =
-              lame(data.get_cell_iterator(b, v)->material_id());
-            cell_lame[b].first[v]  = l;
-            cell_lame[b].second[v] = m;
-          }
+      const unsigned int n_batches = data.n_cell_batches();
+      cell_lame.resize(n_batches);
+      cell_tensor.resize(n_batches);
+      // the quadrature points in MatrixFree's order (the tensor product of
+      // the 1D Gauss rule, x fastest: QGauss<3>'s)
+      const QGauss<3>    quadrature(degree + 1);
+      const unsigned int n_q = quadrature.size();
+      FEValues<3>        points(mapping,
+                         dof_handler.get_fe(),
+                         quadrature,
+                         update_quadrature_points);
+      for (unsigned int b = 0; b < n_batches; ++b)
+        {
+          const unsigned int lanes = data.n_active_entries_per_cell_batch(b);
+          bool               anisotropic = false;
+          for (unsigned int v = 0; v < lanes; ++v)
+            {
+              const auto cell        = data.get_cell_iterator(b, v);
+              const auto [l, m]      = lame(cell->material_id());
+              cell_lame[b].first[v]  = l;
+              cell_lame[b].second[v] = m;
+              if (tensor && tensor(cell->material_id(), cell->center()))
+                anisotropic = true;
+            }
+          // a batch with an anisotropic lane: every lane's C at every
+          // quadrature point
+          if (!anisotropic)
+            continue;
+          cell_tensor[b].resize(n_q);
+          for (unsigned int v = 0; v < lanes; ++v)
+            {
+              const auto cell = data.get_cell_iterator(b, v);
+              points.reinit(cell);
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  std::optional<SymmetricTensor<4, 3>> C =
+                    tensor(cell->material_id(), points.quadrature_point(q));
+                  if (!C)
+                    {
+                      const auto [l, m] = lame(cell->material_id());
+                      C                 = 2. * m * identity_tensor<3>() +
+                          l * outer_product(unit_symmetric_tensor<3>(),
+                                            unit_symmetric_tensor<3>());
+                    }
+                  for (unsigned int i = 0; i < 3; ++i)
+                    for (unsigned int j = i; j < 3; ++j)
+                      for (unsigned int k = 0; k < 3; ++k)
+                        for (unsigned int l = k; l < 3; ++l)
+                          cell_tensor[b][q][i][j][k][l][v] = (*C)[i][j][k][l];
+                }
+            }
+        }
+
+      // The springs: this rank's rows, and every column of every rank.
+      const MPI_Comm comm = in.get_mpi_communicator();
+      for (const SpringEntry &e : spring_entries)
+        if (!constraints.is_constrained(e.row))
+          springs.push_back(e);
+      std::vector<types::global_dof_index> columns;
+      for (const SpringEntry &e : springs)
+        columns.push_back(e.column);
+      for (const auto &rank_columns : Utilities::MPI::all_gather(comm, columns))
+        spring_columns.insert(spring_columns.end(),
+                              rank_columns.begin(),
+                              rank_columns.end());
+      std::sort(spring_columns.begin(), spring_columns.end());
+      spring_columns.erase(std::unique(spring_columns.begin(),
+                                       spring_columns.end()),
+                           spring_columns.end());
+      for (const SpringEntry &e : springs)
+        spring_column_index.push_back(std::lower_bound(spring_columns.begin(),
+                                                       spring_columns.end(),
+                                                       e.column) -
+                                      spring_columns.begin());
+      spring_values.resize(spring_columns.size());
     }
 
     template <int p>
@@ -66,6 +135,14 @@ namespace squeal
             {
               phi.reinit(b);
               phi.gather_evaluate(in, EvaluationFlags::gradients);
+              if (!cell_tensor[b].empty())
+                {
+                  for (const unsigned int q : phi.quadrature_point_indices())
+                    phi.submit_symmetric_gradient(
+                      cell_tensor[b][q] * phi.get_symmetric_gradient(q), q);
+                  phi.integrate_scatter(EvaluationFlags::gradients, out);
+                  continue;
+                }
               const auto &[lambda, mu] = cell_lame[b];
               for (const unsigned int q : phi.quadrature_point_indices())
                 {
@@ -97,14 +174,22 @@ namespace squeal
           default:
             apply<3>(out, in);
         }
-      const auto &part = *out.get_partitioner();
-      for (unsigned int l = 0; l < part.locally_owned_size(); ++l)
+      // the springs: the values at their columns from the owning ranks
+      if (!spring_columns.empty())
         {
-          const auto i = part.local_to_global(l);
-          if (springs.size() == part.size())
-            out.local_element(l) += springs[i] * in.local_element(l);
-          dst.local_element(l) = out.local_element(l);
+          const auto &range = in.get_partitioner()->locally_owned_range();
+          for (unsigned int c = 0; c < spring_columns.size(); ++c)
+            spring_values[c] =
+              range.is_element(spring_columns[c]) ? in(spring_columns[c]) : 0.;
+          if (Utilities::MPI::n_mpi_processes(in.get_mpi_communicator()) > 1)
+            Utilities::MPI::sum(spring_values,
+                                in.get_mpi_communicator(),
+                                spring_values);
+          for (unsigned int e = 0; e < springs.size(); ++e)
+            out(springs[e].row) +=
+              springs[e].k * spring_values[spring_column_index[e]];
         }
+      dst.copy_locally_owned_data_from(out);
     }
 
   } // namespace transient

@@ -13,7 +13,12 @@ coarse size and degree 1:
   coefficient (1e-10); at contact.mu = 0 every eigenvalue decays, at the
   rate of Rayleigh damping within its bounds alpha / 2 <= -Re lambda <=
   (alpha + beta omega^2) / 2 (1 %: the interface and springs are not
-  damped); disc modes are named (n,m+-).
+  damped); disc modes are named (n,m+-);
+- braking (0.15 ms, contact.mu = 0.5): the matrix-free stiffness product,
+  with the transversely isotropic friction material and the springs that
+  join two bodies, equals the assembled matrix on a vector (1e-12, checked
+  at set-up) and over the run: its contact forces equal the sparse run's
+  (1e-9 of the peak), and under mpirun -np 2 (1e-8).
 Usage: check_brake.py SQUEAL WORK_DIR"""
 import csv
 import math
@@ -147,4 +152,47 @@ check("disc modes named (0,m) and (1,m)",
       all(any(n.startswith(p) for n in names) for p in ("(0,2", "(0,3",
                                                         "(1,")),
       sorted(names)[:12])
+
+# Braking: matrix-free (anisotropic body, springs between bodies) against
+# the assembled matrix, serial and on two ranks.
+def braking(name, product, mpi=0):
+    out, log = run_squeal(squeal, "base.prm", name, f"""subsection Scene
+  set Analysis = braking
+end
+subsection Interface
+  set Friction coefficient = 0.5
+end
+subsection Transient
+  set Ramp duration = 5e-5
+  set End time = 1.5e-4
+  set Sampling rate = 1e6
+  set Snapshot interval = 0
+  set Animation frames = 0
+  set Checkpoint interval = 0
+  set Stiffness product = {product}
+end
+""", mpi=mpi)
+    with open(os.path.join(out, "forces.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return log, [(float(r["normal_force_N"]), float(r["tangential_force_N"]))
+                 for r in rows]
+
+
+log_free, free_forces = braking("braking_matrix_free", "matrix-free")
+line = [l for l in log_free.splitlines() if "relative difference" in l]
+diff = float(line[0].split("relative difference ")[1].split(")")[0]) \
+    if line else 1.
+check("braking: matrix-free product = assembled matrix (anisotropic, "
+      "springs between bodies)", diff < 1e-12, line, show=True)
+_, sparse_forces = braking("braking_sparse", "sparse")
+_, mpi_forces = braking("braking_np2", "matrix-free", mpi=2)
+peak = max((abs(n) for n, _ in sparse_forces), default=0.)
+for label, forces, tol in (("matrix-free", free_forces, 1e-9),
+                           ("np = 2", mpi_forces, 1e-8)):
+    worst = max((max(abs(a[0] - b[0]), abs(a[1] - b[1]))
+                 for a, b in zip(forces, sparse_forces)), default=1e300)
+    check(f"braking: {label} forces = sparse run's",
+          len(forces) == len(sparse_forces) > 100 and peak > 0.1 * force and
+          worst <= tol * peak, f"{len(forces)} samples, peak {peak:.1f} N, "
+          f"largest difference {worst:.2e} N", show=True)
 finish()

@@ -3,14 +3,17 @@
 
 /**
  * @file
- * The stiffness product K u of isotropic linear elasticity without an
- * assembled matrix: deal.II's MatrixFree with sum factorisation, vectorised
- * over cell batches and multithreaded (Kronbichler & Kormann, Computers &
- * Fluids 63, 2012), plus a diagonal of discrete springs. The explicit
+ * The stiffness product K u of linear elasticity without an assembled
+ * matrix: deal.II's MatrixFree with sum factorisation, vectorised over cell
+ * batches and multithreaded (Kronbichler & Kormann, Computers & Fluids 63,
+ * 2012), for isotropic bodies (Lame constants per cell) and anisotropic ones
+ * (a stiffness tensor per quadrature point), plus the few entries of the
+ * discrete springs (to the ground or between two bodies). The explicit
  * integrator needs one such product per time step; see
  * benchmarks/transient/README.md for its speed against the sparse matrix.
  */
 
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
@@ -20,7 +23,9 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
+#include <vector>
 
 namespace squeal
 {
@@ -31,16 +36,35 @@ namespace squeal
     class ElasticityOperator
     {
     public:
+      /// one entry k [N/m] of the springs' matrix: row, column (global DoFs)
+      struct SpringEntry
+      {
+        dealii::types::global_dof_index row, column;
+        double                          k;
+      };
+      /// the stiffness tensor [Pa] of an anisotropic material id at a point
+      /// [m] in the global frame, or nothing for an isotropic one
+      using TensorOf = std::function<
+        std::optional<dealii::SymmetricTensor<4, 3>>(dealii::types::material_id,
+                                                     const dealii::Point<3> &)>;
+
       /**
        * Over the locally owned cells of @p dof_handler (any triangulation,
        * serial or parallel::shared / distributed), with MPI vectors.
+       * Quadrature: Gauss with degree + 1 points per direction, as the
+       * assembled stiffness matrix.
        * @param constraints homogeneous Dirichlet constraints only (at least
        * for the locally relevant DoFs); the product is zero in constrained
        * rows
-       * @param lame (lambda, mu) [Pa] of a cell's material id
-       * @param spring_diagonal n_dofs entries [N/m] added to the diagonal
-       * (discrete springs to the ground; only the locally owned entries are
-       * read); may be empty
+       * @param lame (lambda, mu) [Pa] of an isotropic cell's material id
+       * @param springs the nonzero entries of the springs' matrix in this
+       * rank's locally owned rows (diagonal entries ground a DoF, pairs of
+       * off-diagonal entries join two DoFs, which may be owned by other
+       * ranks); rows of constrained DoFs are skipped
+       * @param tensor the stiffness tensor of the anisotropic bodies, by
+       * material id and point; empty or returning nothing: every body
+       * isotropic. Cells of an anisotropic body store C at every
+       * quadrature point (36 numbers each).
        * @throws std::runtime_error for a degree outside 1-3
        */
       ElasticityOperator(const dealii::DoFHandler<3>             &dof_handler,
@@ -48,7 +72,8 @@ namespace squeal
                          const dealii::AffineConstraints<double> &constraints,
                          const std::function<std::pair<double, double>(
                            dealii::types::material_id)>          &lame,
-                         const dealii::Vector<double> &spring_diagonal);
+                         const std::vector<SpringEntry>          &springs,
+                         const TensorOf                          &tensor = {});
 
       using VectorType = dealii::LinearAlgebra::distributed::Vector<double>;
 
@@ -66,9 +91,21 @@ namespace squeal
       dealii::MatrixFree<3, double> data;
       std::vector<std::pair<dealii::VectorizedArray<double>,
                             dealii::VectorizedArray<double>>>
-                             cell_lame; ///< per cell batch: lambda, mu
-      dealii::Vector<double> springs;
-      unsigned int           degree;
+        cell_lame; ///< per cell batch: lambda, mu
+      /// per cell batch: empty (isotropic cells only) or C at each
+      /// quadrature point (isotropic lanes hold their isotropic tensor)
+      std::vector<std::vector<
+        dealii::SymmetricTensor<4, 3, dealii::VectorizedArray<double>>>>
+                               cell_tensor;
+      std::vector<SpringEntry> springs;
+      /// every column of the springs on any rank, sorted; each product sums
+      /// their values over the ranks (each is owned by one)
+      std::vector<dealii::types::global_dof_index> spring_columns;
+      /// for each spring entry: its column's index in spring_columns
+      std::vector<unsigned int> spring_column_index;
+      /// scratch: the values at spring_columns
+      mutable std::vector<double> spring_values;
+      unsigned int                degree;
       /// the MatrixFree layout's vectors the product works on
       mutable VectorType in, out;
     };
