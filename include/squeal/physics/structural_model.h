@@ -560,7 +560,9 @@ namespace squeal
     /**
      * Re-stores @p matrix (n x n, rows @p owned on this process of
      * @p comm) on its nonzero entries only: the pattern shrinks to them, the
-     * values stay. Entries that are exactly zero leave the pattern.
+     * values stay. Entries that are exactly zero leave the pattern, except
+     * the diagonal of a row without any other (one stored zero per empty
+     * row, so that building the pattern stays linear in n).
      * @throws dealii::ExcMessage if PETSc cannot read a row.
      */
     void
