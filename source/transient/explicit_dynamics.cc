@@ -278,15 +278,24 @@ namespace squeal
         {
           if (!(m.D[j] > 0.))
             continue;
-          rows[j].emplace_back(m.slave_dofs[j], -m.D[j]);
+          const auto add = [&](const contact::NodeDofs &d, const double w) {
+            GapNode node;
+            for (unsigned int k = 0; k < 3; ++k)
+              {
+                node.local[k]        = layout->global_to_local(d[k]);
+                node.inverse_mass[k] = inverse_mass[d[k]];
+              }
+            node.w = w;
+            rows[j].push_back(node);
+            delassus[j] += w * w * node_inverse_mass(d);
+          };
+          add(m.slave_dofs[j], -m.D[j]);
           for (const auto &[l, w] : m.M[j])
             {
-              rows[j].emplace_back(m.master_dofs[l], w);
+              add(m.master_dofs[l], w);
               if (master_velocity)
                 master_slide[j] += w * master_velocity(m.master_points[l]);
             }
-          for (const auto &[d, w] : rows[j])
-            delassus[j] += w * w * node_inverse_mass(d);
         }
       contact.pressure.reinit(n_s);
       contact.slip_velocity.reinit(n_s);
@@ -382,9 +391,9 @@ namespace squeal
       const auto relative = [&](const unsigned int       j,
                                 const DistributedVector &x) {
         Tensor<1, 3> r;
-        for (const auto &[d, w] : rows[j])
+        for (const GapNode &node : rows[j])
           for (unsigned int k = 0; k < 3; ++k)
-            r[k] += w * x[d[k]];
+            r[k] += node.w * x.local_element(node.local[k]);
         return r;
       };
       std::vector<Tensor<1, 3>> start(n_s);
@@ -394,9 +403,10 @@ namespace squeal
 
       // Warm start: the multipliers of the previous step, applied.
       const auto apply = [&](const unsigned int j, const Tensor<1, 3> &dP) {
-        for (const auto &[d, w] : rows[j])
+        for (const GapNode &node : rows[j])
           for (unsigned int k = 0; k < 3; ++k)
-            u_next[d[k]] += c * w * inverse_mass[d[k]] * dP[k];
+            u_next.local_element(node.local[k]) +=
+              c * node.w * node.inverse_mass[k] * dP[k];
       };
       for (unsigned int j = 0; j < n_s; ++j)
         if (!rows[j].empty())
@@ -463,9 +473,10 @@ namespace squeal
               ++out.n_separated;
               continue;
             }
-          for (const auto &[d, w] : rows[j])
+          for (const GapNode &node : rows[j])
             for (unsigned int k = 0; k < 3; ++k)
-              a[d[k]] += w * inverse_mass[d[k]] * multiplier[j][k];
+              a.local_element(node.local[k]) +=
+                node.w * node.inverse_mass[k] * multiplier[j][k];
           const Tensor<1, 3> &nj     = mortar->normals[j];
           const double        z      = multiplier[j] * nj;
           const Tensor<1, 3>  lambda = multiplier[j] - z * nj;

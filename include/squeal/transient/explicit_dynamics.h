@@ -49,6 +49,7 @@
 
 #include <squeal/contact/mortar.h>
 
+#include <array>
 #include <functional>
 #include <iosfwd>
 #include <memory>
@@ -326,9 +327,19 @@ namespace squeal
       void
       reinit_vectors();
 
-      /// per slave node: (node DoFs, weight w_k [m^2]) of the slave node
-      /// (-D_jj) and its master nodes (M_jl)
-      std::vector<std::vector<std::pair<contact::NodeDofs, double>>> rows;
+      /// one node of a slave node's weighted gap: its three DoFs as local
+      /// indices of the vectors' layout (ghosts included: no global-index
+      /// search per access), their inverse lumped masses [1/kg] (0 if
+      /// fixed) and its weight w [m^2]
+      struct GapNode
+      {
+        std::array<unsigned int, 3> local;
+        std::array<double, 3>       inverse_mass;
+        double                      w;
+      };
+      /// per slave node: the slave node (w = -D_jj) and its master nodes
+      /// (w = M_jl)
+      std::vector<std::vector<GapNode>> rows;
       std::vector<double>               delassus;     ///< sum w^2 / m per node
       std::vector<dealii::Tensor<1, 3>> master_slide; ///< sum M_jl V(x_l)
       std::vector<dealii::Tensor<1, 3>> multiplier;   ///< z n + lambda
