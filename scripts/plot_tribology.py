@@ -48,7 +48,23 @@ def face_axes(ax, title):
     ax.set_aspect("equal")
 
 
+def face_name(out):
+    """The analysed pad face (Contact history/Face in the run's echoed
+    parameters.prm), or "" for the history's only face."""
+    try:
+        with open(os.path.join(out, "parameters.prm")) as f:
+            for line in f:
+                words = line.split("#")[0].split("=", 1)
+                if len(words) == 2 and words[0].split() == ["set", "Face"]:
+                    return words[1].strip()
+    except OSError:
+        pass
+    return ""
+
+
 def main(out):
+    face = face_name(out)
+    face_title = f"Pad face '{face}'" if face else "Pad face"
     damage_path = os.path.join(out, "damage.csv")
     maps = read(os.path.join(out, "maps.csv"))
     if os.path.exists(damage_path):
@@ -65,8 +81,8 @@ def main(out):
             sc = ax.scatter(s, r, c=v, cmap=cmap, s=90, marker="s")
             fig.colorbar(sc, ax=ax, shrink=0.85)
             face_axes(ax, title)
-        fig.suptitle("Pad face: fatigue damage and contact-pressure statistics "
-                     "per contact node")
+        fig.suptitle(f"{face_title}: fatigue damage and contact-pressure "
+                     "statistics per contact node")
         fig.tight_layout()
         fig.savefig(os.path.join(out, "damage_maps.png"), dpi=110)
         plt.close(fig)
@@ -83,7 +99,8 @@ def main(out):
                            cmap=cmap, interpolation="nearest")
             fig.colorbar(im, ax=ax, shrink=0.85)
             face_axes(ax, title)
-        fig.suptitle("Pad face: crack and exfoliation maps from the SEM images")
+        fig.suptitle(f"{face_title}: crack and exfoliation maps from the SEM "
+                     "images")
         fig.tight_layout()
         fig.savefig(os.path.join(out, "image_maps.png"), dpi=110)
         plt.close(fig)
