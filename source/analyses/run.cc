@@ -1,18 +1,24 @@
 // The program's command line, parameter reading (with --resume), scene
 // validation and export, and the dispatch to the analysis of Scene/Analysis.
 
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
 #include <squeal/analyses/braking.h>
 #include <squeal/analyses/cea.h>
 #include <squeal/analyses/model_updating.h>
 #include <squeal/analyses/preload.h>
 #include <squeal/analyses/run.h>
 #include <squeal/io/mesh_file.h>
+#include <squeal/physics/structural_model.h>
 #include <squeal/scene/scene.h>
 
 #include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -443,6 +449,33 @@ namespace squeal
       }
     } // namespace
 
+    namespace
+    {
+      // The run's peak resident memory (VmHWM) summed over the ranks and on
+      // the largest one, and per DoF of its largest model.
+      void
+      report_peak_memory(MPI_Comm comm)
+      {
+        Utilities::System::MemoryStats stats;
+        Utilities::System::get_memory_stats(stats);
+        const double       mb    = double(stats.VmHWM) / 1024.;
+        const double       total = Utilities::MPI::sum(mb, comm);
+        const double       most  = Utilities::MPI::max(mb, comm);
+        const double       n     = physics::largest_model_size();
+        ConditionalOStream pcout(std::cout,
+                                 Utilities::MPI::this_mpi_process(comm) == 0);
+        pcout << std::fixed << std::setprecision(0) << "Peak memory: " << total
+              << " MB";
+        if (Utilities::MPI::n_mpi_processes(comm) > 1)
+          pcout << " over " << Utilities::MPI::n_mpi_processes(comm)
+                << " ranks (largest " << most << " MB)";
+        if (n > 0.)
+          pcout << ", " << std::setprecision(1) << total * 1024. / n
+                << " kB per DoF (" << std::setprecision(0) << n << " DoFs)";
+        pcout << std::defaultfloat << std::setprecision(6) << std::endl;
+      }
+    } // namespace
+
     void
     run_analysis(const parameters::AllParameters &prm,
                  const ParameterHandler          &handler,
@@ -487,6 +520,7 @@ namespace squeal
           prm, handler, comm, [](ComplexEigenvalueAnalysis &a) { a.run(); });
       if (!failure.empty())
         throw std::runtime_error(failure);
+      report_peak_memory(comm);
     }
   } // namespace analyses
 } // namespace squeal

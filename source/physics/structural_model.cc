@@ -148,6 +148,17 @@ namespace squeal
       return {points, component};
     }
 
+    namespace
+    {
+      types::global_dof_index largest_size = 0;
+    }
+
+    types::global_dof_index
+    largest_model_size()
+    {
+      return largest_size;
+    }
+
     void
     store_nonzeros_only(PETScMatrix    &A,
                         const IndexSet &owned,
@@ -514,6 +525,7 @@ namespace squeal
                             *pattern,
                             comm);
 
+      largest_size = std::max(largest_size, dof_handler.n_dofs());
       pcout << "Mesh: " << triangulation.n_active_cells() << " cells, "
             << dof_handler.n_dofs() << " DoFs (degree " << prm.mesh.fe_degree
             << "), " << constraints.n_constraints() << " constrained"

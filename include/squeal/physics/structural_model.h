@@ -558,6 +558,14 @@ namespace squeal
                    const StructuralModel                   &to);
 
     /**
+     * The largest number of DoFs of any StructuralModel set up so far in
+     * this process (0 before the first): the size a run's memory is set
+     * against (its peak per DoF).
+     */
+    dealii::types::global_dof_index
+    largest_model_size();
+
+    /**
      * Re-stores @p matrix (n x n, rows @p owned on this process of
      * @p comm) on its nonzero entries only: the pattern shrinks to them, the
      * values stay. Entries that are exactly zero leave the pattern, except
