@@ -5,6 +5,8 @@
 // touching it, so that a truncated or foreign file gives one line naming the
 // dataset instead of HDF5's error stack.
 
+#include <deal.II/base/utilities.h>
+
 #include <squeal/io/contact_history.h>
 
 #include <hdf5.h>
@@ -15,7 +17,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -272,16 +273,11 @@ namespace squeal
     {
       const auto named = std::find(face_names.begin(), face_names.end(), name);
       if (named == face_names.end())
-        {
-          std::string list;
-          for (const std::string &n : face_names)
-            list += (list.empty() ? "'" : ", '") + n + "'";
-          throw std::runtime_error(
-            "the contact history has no pad face '" + name + "' (" +
-            (list.empty() ? std::string("it holds one unnamed face") :
-                            "its faces: " + list) +
-            ")");
-        }
+        throw std::runtime_error(
+          "the contact history has no pad face '" + name + "' (" +
+          (face_names.empty() ? std::string("it holds one unnamed face") :
+                                "its faces: " + face_list()) +
+          ")");
       const unsigned int keep = named - face_names.begin();
       std::size_t        kept = 0;
       for (std::size_t i = 0; i < n_nodes(); ++i)
@@ -306,6 +302,15 @@ namespace squeal
       status.resize(kept);
       face.assign(kept, 0);
       face_names = {name};
+    }
+
+    std::string
+    ContactHistory::face_list() const
+    {
+      std::string list;
+      for (const std::string &n : face_names)
+        list += (list.empty() ? "'" : ", '") + n + "'";
+      return list;
     }
 
     std::array<double, 2>
@@ -486,16 +491,8 @@ namespace squeal
           if (H5LTget_attribute_string(f.id, "/face", "names", names.data()) <
               0)
             fail(filename, "cannot read attribute 'names' of /face");
-          names.resize(std::strlen(names.c_str()));
-          std::size_t begin = 0;
-          while (true)
-            {
-              const std::size_t end = names.find(';', begin);
-              h.face_names.push_back(names.substr(begin, end - begin));
-              if (end == std::string::npos)
-                break;
-              begin = end + 1;
-            }
+          h.face_names =
+            dealii::Utilities::split_string_list(names.c_str(), ';');
         }
       h.sampling_rate =
         read_attribute(f.id, filename, "sampling_rate", 1).front();

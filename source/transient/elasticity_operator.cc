@@ -93,27 +93,34 @@ namespace squeal
         }
 
       // The springs: this rank's rows, and every column of every rank.
-      const MPI_Comm comm = in.get_mpi_communicator();
+      const MPI_Comm                       comm = in.get_mpi_communicator();
+      std::vector<types::global_dof_index> columns;
       for (const SpringEntry &e : spring_entries)
         if (!constraints.is_constrained(e.row))
-          springs.push_back(e);
-      std::vector<types::global_dof_index> columns;
-      for (const SpringEntry &e : springs)
-        columns.push_back(e.column);
+          columns.push_back(e.column);
+      std::vector<types::global_dof_index> all_columns;
       for (const auto &rank_columns : Utilities::MPI::all_gather(comm, columns))
-        spring_columns.insert(spring_columns.end(),
-                              rank_columns.begin(),
-                              rank_columns.end());
-      std::sort(spring_columns.begin(), spring_columns.end());
-      spring_columns.erase(std::unique(spring_columns.begin(),
-                                       spring_columns.end()),
-                           spring_columns.end());
-      for (const SpringEntry &e : springs)
-        spring_column_index.push_back(std::lower_bound(spring_columns.begin(),
-                                                       spring_columns.end(),
-                                                       e.column) -
-                                      spring_columns.begin());
-      spring_values.resize(spring_columns.size());
+        all_columns.insert(all_columns.end(),
+                           rank_columns.begin(),
+                           rank_columns.end());
+      std::sort(all_columns.begin(), all_columns.end());
+      all_columns.erase(std::unique(all_columns.begin(), all_columns.end()),
+                        all_columns.end());
+      const auto &part = *in.get_partitioner();
+      for (const auto c : all_columns)
+        spring_column_local.push_back(part.in_local_range(c) ?
+                                        part.global_to_local(c) :
+                                        numbers::invalid_unsigned_int);
+      for (const SpringEntry &e : spring_entries)
+        if (!constraints.is_constrained(e.row))
+          springs.push_back(
+            {part.global_to_local(e.row),
+             static_cast<unsigned int>(std::lower_bound(all_columns.begin(),
+                                                        all_columns.end(),
+                                                        e.column) -
+                                       all_columns.begin()),
+             e.k});
+      spring_values.resize(all_columns.size());
     }
 
     template <int p>
@@ -175,19 +182,19 @@ namespace squeal
             apply<3>(out, in);
         }
       // the springs: the values at their columns from the owning ranks
-      if (!spring_columns.empty())
+      if (!spring_values.empty())
         {
-          const auto &range = in.get_partitioner()->locally_owned_range();
-          for (unsigned int c = 0; c < spring_columns.size(); ++c)
+          for (unsigned int c = 0; c < spring_values.size(); ++c)
             spring_values[c] =
-              range.is_element(spring_columns[c]) ? in(spring_columns[c]) : 0.;
+              spring_column_local[c] == numbers::invalid_unsigned_int ?
+                0. :
+                in.local_element(spring_column_local[c]);
           if (Utilities::MPI::n_mpi_processes(in.get_mpi_communicator()) > 1)
             Utilities::MPI::sum(spring_values,
                                 in.get_mpi_communicator(),
                                 spring_values);
-          for (unsigned int e = 0; e < springs.size(); ++e)
-            out(springs[e].row) +=
-              springs[e].k * spring_values[spring_column_index[e]];
+          for (const LocalSpring &e : springs)
+            out.local_element(e.row) += e.k * spring_values[e.column];
         }
       dst.copy_locally_owned_data_from(out);
     }

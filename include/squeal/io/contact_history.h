@@ -88,6 +88,11 @@ namespace squeal
       void
       keep_face(const std::string &name);
 
+      /** The face names quoted and separated by commas ("'inner pad',
+       * 'outer pad'"), for messages; empty for one unnamed face. */
+      std::string
+      face_list() const;
+
       /** Pad-face coordinates of a node: (position . sliding, position .
        * radial) [m]: the x and y axes of every map. */
       std::array<double, 2>

@@ -96,14 +96,21 @@ namespace squeal
       /// quadrature point (isotropic lanes hold their isotropic tensor)
       std::vector<std::vector<
         dealii::SymmetricTensor<4, 3, dealii::VectorizedArray<double>>>>
-                               cell_tensor;
-      std::vector<SpringEntry> springs;
-      /// every column of the springs on any rank, sorted; each product sums
-      /// their values over the ranks (each is owned by one)
-      std::vector<dealii::types::global_dof_index> spring_columns;
-      /// for each spring entry: its column's index in spring_columns
-      std::vector<unsigned int> spring_column_index;
-      /// scratch: the values at spring_columns
+        cell_tensor;
+      /// this rank's spring entries: row as a local index of the product's
+      /// vectors, column as an index into spring_values, k [N/m]
+      struct LocalSpring
+      {
+        unsigned int row, column;
+        double       k;
+      };
+      std::vector<LocalSpring> springs;
+      /// per column of the springs on any rank (sorted by global index):
+      /// its local index in the product's vectors if this rank owns it,
+      /// else numbers::invalid_unsigned_int; each product sums the values
+      /// over the ranks (each column is owned by one)
+      std::vector<unsigned int> spring_column_local;
+      /// scratch: the values at the springs' columns
       mutable std::vector<double> spring_values;
       unsigned int                degree;
       /// the MatrixFree layout's vectors the product works on
