@@ -24,7 +24,6 @@ namespace squeal
     using dealii::Patterns::Double;
     using dealii::Patterns::Selection;
 
-    using internal::nan;
     using internal::parse_doubles;
     using internal::parse_points;
     using internal::resolve;

@@ -38,15 +38,9 @@ namespace squeal
   namespace tribology
   {
     namespace fs = std::filesystem;
-    using dealii::Patterns::Anything;
-    using dealii::Patterns::Double;
-    using dealii::Patterns::Selection;
 
     using internal::nan;
-    using internal::parse_doubles;
-    using internal::parse_points;
     using internal::resolve;
-    using parameters::parse_file;
 
     namespace
     {
