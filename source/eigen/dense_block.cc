@@ -264,6 +264,47 @@ namespace squeal
         return result;
       }
 
+      std::vector<int>
+      nonzero_rows(const PETScMatrix &A)
+      {
+        const auto       range = A.local_range();
+        std::vector<int> rows;
+        for (auto i = range.first; i < range.second; ++i)
+          {
+            PetscInt           n;
+            const PetscScalar *values;
+            if (MatGetRow(A, i, &n, nullptr, &values) != 0)
+              throw std::runtime_error("dense block: MatGetRow failed");
+            const bool any = std::any_of(values, values + n, [](const auto v) {
+              return v != 0.;
+            });
+            MatRestoreRow(A, i, &n, nullptr, &values);
+            if (any)
+              rows.push_back(i - range.first);
+          }
+        return rows;
+      }
+
+      void
+      common_positions(const std::vector<int> &x,
+                       const std::vector<int> &y,
+                       std::vector<int>       &in_x,
+                       std::vector<int>       &in_y)
+      {
+        in_x.clear();
+        in_y.clear();
+        for (std::size_t a = 0, b = 0; a < x.size() && b < y.size();)
+          if (x[a] < y[b])
+            ++a;
+          else if (y[b] < x[a])
+            ++b;
+          else
+            {
+              in_x.push_back(a++);
+              in_y.push_back(b++);
+            }
+      }
+
       Eigen::MatrixXd
       solve_block(void *ksp, const PETScMatrix &A, const Eigen::MatrixXd &B)
       {

@@ -42,6 +42,24 @@ namespace squeal
       multiply(const PETScMatrix &A, const Eigen::MatrixXd &B);
 
       /**
+       * The locally owned rows of the sparse matrix @p A that hold a
+       * nonzero value, as indices into the local range (ascending).
+       * @throws std::runtime_error if PETSc fails.
+       */
+      std::vector<int>
+      nonzero_rows(const PETScMatrix &A);
+
+      /**
+       * The positions in @p x and in @p y (both ascending) of the values
+       * they have in common, in ascending order of the values.
+       */
+      void
+      common_positions(const std::vector<int> &x,
+                       const std::vector<int> &y,
+                       std::vector<int>       &in_x,
+                       std::vector<int>       &in_y);
+
+      /**
        * X = A^-1 B with a factorised solver for the locally owned rows of a
        * dense n x m block B (one multi-right-hand-side solve).
        * @throws std::runtime_error if PETSc fails.

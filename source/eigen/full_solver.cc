@@ -344,6 +344,8 @@ namespace squeal
               for (unsigned int b = 0; b < keep.size(); ++b)
                 gram_k(a, b) = gram(keep[a], keep[b]);
             }
+          T.resize(0, 0);
+          MT.resize(0, 0);
           Eigen::MatrixXd S;
           if (V.cols() == 0 && modes)
             {

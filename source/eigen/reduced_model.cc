@@ -22,6 +22,7 @@ namespace squeal
   {
     using namespace dealii;
     using Kind = physics::MatrixParts::Kind;
+    using Eigen::all;
 
     using internal::local_part;
     using internal::multiply;
@@ -37,8 +38,13 @@ namespace squeal
       model.mass(model.reference, M_ref);
       const unsigned int n_parts = model.size();
       active.assign(n_parts, false);
+      rows.assign(n_parts, std::vector<int>());
       for (unsigned int k = 0; k < n_parts; ++k)
-        active[k] = model.matrix(k).frobenius_norm() > 0.;
+        {
+          active[k] = model.matrix(k).frobenius_norm() > 0.;
+          if (active[k])
+            rows[k] = internal::nonzero_rows(model.matrix(k));
+        }
       Ar.assign(n_parts, Eigen::MatrixXd());
       W.assign(n_parts, Eigen::MatrixXd());
       G.assign(n_parts, std::vector<Eigen::MatrixXd>(n_parts));
@@ -207,10 +213,12 @@ namespace squeal
           Ar[k] = Eigen::MatrixXd::Zero(r + q, r + q);
         else
           {
-            Eigen::MatrixXd WN     = multiply(model.matrix(k), Nn);
-            Eigen::MatrixXd top    = V.transpose() * WN,
-                            left   = Nn.transpose() * W[k],
-                            corner = Nn.transpose() * WN;
+            const std::vector<int> &i  = rows[k];
+            const Eigen::MatrixXd   WN = multiply(model.matrix(k), Nn)(i, all),
+                                  Ni   = Nn(i, all);
+            Eigen::MatrixXd top        = V(i, all).transpose() * WN,
+                            left       = Ni.transpose() * W[k],
+                            corner     = Ni.transpose() * WN;
             sum_over_ranks(top, comm);
             sum_over_ranks(left, comm);
             sum_over_ranks(corner, comm);
@@ -240,9 +248,11 @@ namespace squeal
         V = B * orthonormalising_transform(gram);
       }
       const unsigned int n_parts = active.size();
+      // A_k V on the rows where A_k has entries (a spring set's few rows,
+      // an interface's face, a body's own DoFs)
       for (unsigned int k = 0; k < n_parts; ++k)
         if (active[k])
-          W[k] = multiply(model.matrix(k), V);
+          W[k] = multiply(model.matrix(k), V)(rows[k], all);
         else
           W[k].resize(0, 0);
 
@@ -253,12 +263,14 @@ namespace squeal
               Ar[k] = Eigen::MatrixXd::Zero(V.cols(), V.cols());
               continue;
             }
-          Ar[k] = V.transpose() * W[k];
+          Ar[k] = V(rows[k], all).transpose() * W[k];
           sum_over_ranks(Ar[k], comm);
+          std::vector<int> in_k, in_l;
           for (unsigned int l = k; l < n_parts && with_residuals; ++l)
             if (active[l])
               {
-                G[k][l] = W[k].transpose() * W[l];
+                internal::common_positions(rows[k], rows[l], in_k, in_l);
+                G[k][l] = W[k](in_k, all).transpose() * W[l](in_l, all);
                 sum_over_ranks(G[k][l], comm);
               }
         }
@@ -395,28 +407,36 @@ namespace squeal
     {
       const auto         c       = parts.coefficients(p);
       const unsigned int n_parts = active.size();
-      const auto combine = [&](const physics::MatrixParts::Coefficients &a,
-                               const std::vector<Eigen::MatrixXd>       &A,
-                               const int                                 rows) {
-        Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(rows, V.cols());
+      const int          r       = V.cols();
+      const auto combine = [&](const physics::MatrixParts::Coefficients &a) {
+        Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(r, r);
         for (unsigned int k = 0; k < n_parts; ++k)
           if (active[k] && a[k] != 0.)
-            sum += a[k] * A[k];
+            sum += a[k] * Ar[k];
         return sum;
       };
-      const int  n = V.rows(), r = V.cols();
+      // sum_k a_k A_k V from the parts' rows
+      const auto expand = [&](const physics::MatrixParts::Coefficients &a) {
+        Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(V.rows(), V.cols());
+        for (unsigned int k = 0; k < n_parts; ++k)
+          if (active[k] && a[k] != 0.)
+            sum(rows[k], all) += a[k] * W[k];
+        return sum;
+      };
       Projection result;
       result.V  = V;
-      result.MV = combine(c.mass, W, n);
-      result.CV = combine(c.damping, W, n);
-      result.KV = combine(c.stiffness, W, n);
-      result.Mr = combine(c.mass, Ar, r);
-      result.Cr = combine(c.damping, Ar, r);
-      result.Kr = combine(c.stiffness, Ar, r);
+      result.MV = expand(c.mass);
+      result.CV = expand(c.damping);
+      result.KV = expand(c.stiffness);
+      result.Mr = combine(c.mass);
+      result.Cr = combine(c.damping);
+      result.Kr = combine(c.stiffness);
       if (parts.modal.active())
         {
-          const auto m = internal::subspace_modal_damping(
-            result.Mr, combine(c.symmetric_stiffness, Ar, r), parts.modal);
+          const auto m =
+            internal::subspace_modal_damping(result.Mr,
+                                             combine(c.symmetric_stiffness),
+                                             parts.modal);
           result.modal_U = result.MV * m.Psi;
           result.modal_d = m.d;
           result.CV += result.MV * m.B;

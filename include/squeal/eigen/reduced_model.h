@@ -172,9 +172,12 @@ namespace squeal
       bool has_residuals = false;  ///< G is complete for the current basis
       unsigned int    largest_sample = 0; ///< see sample_mode_count()
       Eigen::MatrixXd V;                  ///< n_local x r, M-orthonormal
-      std::vector<Eigen::MatrixXd>              Ar; ///< V^T A_k V
-      std::vector<Eigen::MatrixXd>              W;  ///< A_k V, local rows
-      std::vector<std::vector<Eigen::MatrixXd>> G;  ///< (A_k V)^T (A_l V)
+      std::vector<Eigen::MatrixXd> Ar;    ///< V^T A_k V
+      /// the local rows where A_k has a nonzero entry (ascending)
+      std::vector<std::vector<int>> rows;
+      /// A_k V on rows[k] only (|rows[k]| x r)
+      std::vector<Eigen::MatrixXd>              W;
+      std::vector<std::vector<Eigen::MatrixXd>> G; ///< (A_k V)^T (A_l V)
       dealii::IndexSet                          owned;
       MPI_Comm                                  comm;
     };
