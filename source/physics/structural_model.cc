@@ -481,12 +481,13 @@ namespace squeal
         const double omega_s =
           2. * numbers::PI * 1e3 * model.prm.eigensolver.f_max;
         for (unsigned int k = 0; k < parts.size(); ++k)
-          set_constrained_diagonal(constraints,
-                                   model.locally_owned_dofs,
-                                   k == fixed_stiffness ? d :
-                                   k == fixed_mass ? d / (omega_s * omega_s) :
-                                                     0.,
-                                   *model.part_matrices[k]);
+          if (!parts.parts[k].own_pattern) // those are set
+            set_constrained_diagonal(constraints,
+                                     model.locally_owned_dofs,
+                                     k == fixed_stiffness ? d :
+                                     k == fixed_mass ? d / (omega_s * omega_s) :
+                                                       0.,
+                                     *model.part_matrices[k]);
         return d;
       }
     } // namespace
@@ -569,11 +570,20 @@ namespace squeal
       if (!scene->masses.empty())
         pcout << "Masses: " << scene->masses.size() << " lumped, " << total
               << " kg in all" << std::endl;
+      // A spring set or an interface part touches a few hundred rows: it is
+      // stored on its own nonzeros as soon as it is assembled (with its
+      // constrained rows 0), so that at most one part at a time holds the
+      // whole pattern (17 spring sets of a 91 374-DoF brake: 3.1 GB)
+      const auto compact = [&](PETScMatrix &A) {
+        set_constrained_diagonal(constraints, locally_owned_dofs, 0., A);
+        store_nonzeros_only(A, locally_owned_dofs, comm);
+      };
       for (const scene::SpringSet &springs : scene->springs)
         {
           const std::string k = springs.name + ".k";
           PETScMatrix      &K = new_part_matrix();
           add_springs(springs, K, reference_of(k), pcout);
+          compact(K);
           parts.parts.push_back({&K,
                                  MatrixParts::Kind::stiffness,
                                  "springs " + springs.name,
@@ -582,6 +592,7 @@ namespace squeal
                                  "",
                                  "damping.beta",
                                  true});
+          parts.parts.back().own_pattern = true;
         }
       for (unsigned int i = 0; i < pair_points.size(); ++i)
         {
@@ -604,6 +615,8 @@ namespace squeal
                              Kst);
           Kn.compress(VectorOperation::add);
           Kt.compress(VectorOperation::add);
+          compact(Kn);
+          compact(Kt);
           parts.parts.push_back({&Kn,
                                  MatrixParts::Kind::interface_normal,
                                  "normal interface " + pair.name,
@@ -612,6 +625,7 @@ namespace squeal
                                  "",
                                  "",
                                  false});
+          parts.parts.back().own_pattern = true;
           parts.parts.push_back({&Kt,
                                  MatrixParts::Kind::interface_friction,
                                  "friction " + pair.name,
@@ -620,9 +634,11 @@ namespace squeal
                                  pair.name + ".mu",
                                  "",
                                  false});
+          parts.parts.back().own_pattern = true;
           if (Kst)
             {
               Kst->compress(VectorOperation::add);
+              compact(*Kst);
               parts.parts.push_back({Kst,
                                      MatrixParts::Kind::interface_normal,
                                      "tangential interface " + pair.name,
@@ -631,6 +647,7 @@ namespace squeal
                                      "",
                                      "",
                                      false});
+              parts.parts.back().own_pattern = true;
             }
         }
       part_matrices.resize(next_part);
@@ -645,7 +662,8 @@ namespace squeal
       // on the common pattern each would cost a whole matrix in memory and
       // in every product.
       for (unsigned int k = 0; k < parts.size(); ++k)
-        if (k != fixed_mass && k != fixed_stiffness)
+        if (k != fixed_mass && k != fixed_stiffness &&
+            !parts.parts[k].own_pattern)
           {
             const auto it =
               std::find_if(part_matrices.begin(),
