@@ -327,6 +327,28 @@ main(int argc, char **argv)
           unstable(eigenvalues(red)),
           unstable(eigenvalues(full)),
           0);
+
+    // the products released (as the CEA does before its check): the basis
+    // still expands a mode, a further solve is refused
+    physics::PETScVector before_re, before_im, after_re, after_im;
+    reduced.expand(red[0].q, before_re, before_im);
+    reduced.release_products();
+    reduced.expand(red[0].q, after_re, after_im);
+    const double norm = before_re.l2_norm();
+    after_re -= before_re;
+    test_tools::check_true("released: the basis expands a mode unchanged",
+                           norm > 0. && after_re.l2_norm() == 0.);
+    bool refused = false;
+    try
+      {
+        reduced.solve(point, f_min, f_max);
+      }
+    catch (const std::logic_error &)
+      {
+        refused = true;
+      }
+    test_tools::check_true("released: a further reduced solve is refused",
+                           refused);
   }
   return test_tools::finish();
 }

@@ -735,6 +735,10 @@ namespace squeal
           "Eigensolver/Minimum and Maximum frequency against the materials "
           "and the mesh");
       certify();
+      // no reduced point is solved from here on: the check and the
+      // outputs need the basis only
+      if (prm.eigensolver.method == "reduced")
+        reduced.release_products();
       classify();
       check_against_full();
       decompose_unstable_modes();

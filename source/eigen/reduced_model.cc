@@ -45,6 +45,7 @@ namespace squeal
           if (active[k])
             rows[k] = internal::nonzero_rows(model.matrix(k));
         }
+      released = false;
       Ar.assign(n_parts, Eigen::MatrixXd());
       W.assign(n_parts, Eigen::MatrixXd());
       G.assign(n_parts, std::vector<Eigen::MatrixXd>(n_parts));
@@ -166,6 +167,9 @@ namespace squeal
                          const std::vector<PETScVector> &vectors,
                          const bool                      with_residuals)
     {
+      if (released)
+        throw std::logic_error(
+          "reduced model: the parts' products were released");
       Eigen::MatrixXd N(owned.n_elements(), vectors.size());
       for (unsigned int j = 0; j < vectors.size(); ++j)
         N.col(j) = local_part(vectors[j], owned);
@@ -282,6 +286,9 @@ namespace squeal
                         const double                   f_min,
                         const double                   f_max) const
     {
+      if (released)
+        throw std::logic_error(
+          "reduced model: the parts' products were released");
       const int          r       = V.cols();
       const unsigned int n_parts = active.size();
       const auto         c       = parts.coefficients(point);
@@ -405,6 +412,9 @@ namespace squeal
     Projection
     ReducedModel::projection(const parameters::ScalarPoint &p) const
     {
+      if (released)
+        throw std::logic_error(
+          "reduced model: the parts' products were released");
       const auto         c       = parts.coefficients(p);
       const unsigned int n_parts = active.size();
       const int          r       = V.cols();
@@ -443,6 +453,18 @@ namespace squeal
           result.Cr += result.Mr * m.B;
         }
       return result;
+    }
+
+    void
+    ReducedModel::release_products()
+    {
+      for (auto &w : W)
+        Eigen::MatrixXd().swap(w);
+      for (auto &row : G)
+        for (auto &g : row)
+          Eigen::MatrixXd().swap(g);
+      has_residuals = false;
+      released      = true;
     }
 
     void

@@ -125,6 +125,16 @@ namespace squeal
       Projection
       projection(const parameters::ScalarPoint &p) const;
 
+      /**
+       * Frees the parts' products A_k V and their Gram matrices once no
+       * more sweep point is solved (about 2 GB of the 91 374-DoF brake's
+       * CEA): expand(), size() and projected_part() stay valid.
+       * solve(), projection() and enrich() throw std::logic_error until
+       * build() or build_from_vectors() is called again.
+       */
+      void
+      release_products();
+
       /** The full-model vector V q, real and imaginary parts (length n). */
       void
       expand(const Eigen::VectorXcd &q,
@@ -170,6 +180,7 @@ namespace squeal
       PETScMatrix          M_ref;  ///< M at the reference
       std::vector<bool>    active; ///< part is non-zero
       bool has_residuals = false;  ///< G is complete for the current basis
+      bool released      = false;  ///< see release_products()
       unsigned int    largest_sample = 0; ///< see sample_mode_count()
       Eigen::MatrixXd V;                  ///< n_local x r, M-orthonormal
       std::vector<Eigen::MatrixXd> Ar;    ///< V^T A_k V
