@@ -29,6 +29,31 @@ namespace squeal
     using internal::orthonormalising_transform;
     using internal::sum_over_ranks;
 
+    namespace
+    {
+      // sum_k a_k V^T A_k V over the active parts (r x r)
+      Eigen::MatrixXd
+      projected_sum(const std::vector<Eigen::MatrixXd>       &Ar,
+                    const std::vector<bool>                  &active,
+                    const physics::MatrixParts::Coefficients &a,
+                    const int                                 r)
+      {
+        Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(r, r);
+        for (unsigned int k = 0; k < active.size(); ++k)
+          if (active[k] && a[k] != 0.)
+            sum += a[k] * Ar[k];
+        return sum;
+      }
+
+      void
+      require_products(const bool released)
+      {
+        if (released)
+          throw std::logic_error(
+            "reduced model: the parts' products were released");
+      }
+    } // namespace
+
     void
     ReducedModel::make_reference_mass(const physics::MatrixParts &model)
     {
@@ -167,9 +192,7 @@ namespace squeal
                          const std::vector<PETScVector> &vectors,
                          const bool                      with_residuals)
     {
-      if (released)
-        throw std::logic_error(
-          "reduced model: the parts' products were released");
+      require_products(released);
       Eigen::MatrixXd N(owned.n_elements(), vectors.size());
       for (unsigned int j = 0; j < vectors.size(); ++j)
         N.col(j) = local_part(vectors[j], owned);
@@ -286,18 +309,12 @@ namespace squeal
                         const double                   f_min,
                         const double                   f_max) const
     {
-      if (released)
-        throw std::logic_error(
-          "reduced model: the parts' products were released");
+      require_products(released);
       const int          r       = V.cols();
       const unsigned int n_parts = active.size();
       const auto         c       = parts.coefficients(point);
       const auto combine = [&](const physics::MatrixParts::Coefficients &a) {
-        Eigen::MatrixXd A = Eigen::MatrixXd::Zero(r, r);
-        for (unsigned int k = 0; k < n_parts; ++k)
-          if (active[k] && a[k] != 0.)
-            A += a[k] * Ar[k];
-        return A;
+        return projected_sum(Ar, active, a, r);
       };
       const Eigen::MatrixXd M = combine(c.mass), K = combine(c.stiffness);
       Eigen::MatrixXd       C = combine(c.damping);
@@ -412,18 +429,12 @@ namespace squeal
     Projection
     ReducedModel::projection(const parameters::ScalarPoint &p) const
     {
-      if (released)
-        throw std::logic_error(
-          "reduced model: the parts' products were released");
+      require_products(released);
       const auto         c       = parts.coefficients(p);
       const unsigned int n_parts = active.size();
       const int          r       = V.cols();
       const auto combine = [&](const physics::MatrixParts::Coefficients &a) {
-        Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(r, r);
-        for (unsigned int k = 0; k < n_parts; ++k)
-          if (active[k] && a[k] != 0.)
-            sum += a[k] * Ar[k];
-        return sum;
+        return projected_sum(Ar, active, a, r);
       };
       // sum_k a_k A_k V from the parts' rows
       const auto expand = [&](const physics::MatrixParts::Coefficients &a) {
