@@ -98,16 +98,6 @@ namespace squeal
                          const bool                      with_residuals = true);
 
       /**
-       * Adds to the basis the parts of @p vectors M-orthogonal to it (two
-       * Gram-Schmidt passes; vectors lying in the basis to 1e-10 relative
-       * are dropped) and re-projects.
-       */
-      void
-      enrich(const physics::MatrixParts     &model,
-             const std::vector<PETScVector> &vectors,
-             const bool                      with_residuals = true);
-
-      /**
        * Eigenpairs with Im lambda > 0 and frequency in [f_min, f_max] [Hz]
        * at the parameter point @p p, sorted by frequency.
        * @throws std::runtime_error if LAPACK fails.
@@ -129,7 +119,7 @@ namespace squeal
        * Frees the parts' products A_k V and their Gram matrices once no
        * more sweep point is solved (about 2 GB of the 91 374-DoF brake's
        * CEA): expand(), size() and projected_part() stay valid.
-       * solve(), projection() and enrich() throw std::logic_error until
+       * solve() and projection() throw std::logic_error until
        * build() or build_from_vectors() is called again.
        */
       void
