@@ -116,6 +116,18 @@ namespace squeal
       model->setup_and_assemble(pcout);
       refine_at_contact(preload_pressure);
       adapt_mesh();
+      // the matrices of the chosen points on the final mesh
+      if (!prm.output.export_points.empty())
+        {
+          const auto sweep = sweep_points();
+          std::vector<std::pair<unsigned int, parameters::ScalarPoint>> points;
+          for (const unsigned int p : prm.output.export_points)
+            points.emplace_back(p, sweep[p]);
+          io::export_matrices(*model, points, work_dir + "/matrices");
+          pcout << "Matrices of " << points.size()
+                << " sweep point(s) written to matrices/ (MatrixMarket)"
+                << std::endl;
+        }
     }
 
     std::vector<parameters::ScalarPoint>
