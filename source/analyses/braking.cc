@@ -324,7 +324,7 @@ namespace squeal
         std::vector<ElasticityOperator::SpringEntry> springs;
         for (const auto i : model.locally_owned_dofs)
           if (!fixed[i])
-            for (auto e = ks.begin(i); e != ks.end(i); ++e)
+            for (auto e = ks.begin(i), end = ks.end(i); e != end; ++e)
               if (e->value() != 0.)
                 springs.push_back({i, e->column(), e->value()});
         matrix_free = std::make_unique<ElasticityOperator>(

@@ -211,13 +211,14 @@ namespace squeal
     {
       const unsigned int     n = K.m();
       DynamicSparsityPattern dsp(n, n);
+      // end(i) hoisted: each PETSc row iterator reads its row (MatGetRow)
       for (unsigned int i = 0; i < n; ++i)
-        for (auto e = K.begin(i); e != K.end(i); ++e)
+        for (auto e = K.begin(i), end = K.end(i); e != end; ++e)
           dsp.add(i, e->column());
       pattern.copy_from(dsp);
       target.reinit(pattern);
       for (unsigned int i = 0; i < n; ++i)
-        for (auto e = K.begin(i); e != K.end(i); ++e)
+        for (auto e = K.begin(i), end = K.end(i); e != end; ++e)
           target.set(i, e->column(), e->value());
     }
 
