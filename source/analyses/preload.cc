@@ -1,9 +1,9 @@
 // The static preload: the CEA's structure (mesh, FE space, matrix parts) at
 // the file's nominal parameters, the scene's loads, and every contact pair
-// pressed together through mortar frictional contact. The PETSc stiffness of
-// the structural model is copied into a deal.II sparse matrix for the direct
-// serial solve of the augmented contact system; under mpirun MUMPS solves the
-// distributed one.
+// pressed together through mortar frictional contact. Serially the PETSc
+// stiffness of the structural model is copied into a deal.II sparse matrix
+// (the contact solver's serial stiffness); under mpirun each rank keeps its
+// rows. MUMPS solves the augmented contact system either way.
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/numerics/data_out.h>

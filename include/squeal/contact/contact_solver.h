@@ -41,9 +41,10 @@
  * so that an active node's pressure is exactly k_j times its penetration,
  * and k_j -> infinity gives the hard law back (first order in 1/k_j).
  *
- * The augmented system is solved by UMFPACK (serial) or MUMPS (MPI: each
- * rank its rows of the structure, the contact rows replicated; the active
- * sets are updated identically on every rank from the gathered solution).
+ * The augmented system is solved by MUMPS's LU, on one process or under
+ * MPI (each rank its rows of the structure, the contact rows replicated;
+ * the active sets are updated identically on every rank from the gathered
+ * solution).
  */
 
 #include <deal.II/base/tensor.h>
@@ -65,9 +66,9 @@ namespace squeal
   {
     /**
      * The structure's stiffness [N/m] as the contact solver sees it: a
-     * serial deal.II matrix (the augmented system is solved by UMFPACK) or
-     * a distributed PETSc matrix whose rows each rank owns in contiguous
-     * ranges (the augmented system is solved by MUMPS across the ranks; the
+     * serial deal.II matrix or a distributed PETSc matrix whose rows each
+     * rank owns in contiguous ranges. Either way the augmented system is
+     * solved by MUMPS's LU (on the one process, or across the ranks: the
      * contact rows are built identically on every rank and owned by the
      * last one, the solution gathered on every rank). Both are n x n,
      * assembled with the constraints given to the solver.
