@@ -10,6 +10,7 @@
 
 #include <squeal/analyses/braking.h>
 #include <squeal/analyses/preload.h>
+#include <squeal/base/memory_estimate.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/io/output_directory.h>
 
@@ -261,6 +262,18 @@ namespace squeal
             << s.time_step << " s, beta2 = " << tr.beta2 << "\nProbe: pad "
             << "leading edge at (" << probe_point[0] << ", " << probe_point[1]
             << ", " << probe_point[2] << ") m" << std::endl;
+      // what the time loop adds: the samples (17 numbers) and the contact
+      // history (4 numbers and a status per slave node), on every rank
+      const double history = tr.end_time * tr.sampling_rate * 17. * 8. +
+                             std::max(0., tr.end_time - tr.history_start) *
+                               tr.sampling_rate * mortar.n_slave() *
+                               (4. * 8. + 4.);
+      report_memory_estimate(comm,
+                             pcout.is_active() ? &pcout.get_stream() : nullptr,
+                             n,
+                             history * Utilities::MPI::n_mpi_processes(comm),
+                             "the recorded samples and contact history (the "
+                             "operators are in place)");
     }
 
     // Output/Directory.partial: fresh (parameters.prm, vtu/, checkpoint/),

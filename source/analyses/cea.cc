@@ -12,6 +12,7 @@
 #include <squeal/analyses/cea.h>
 #include <squeal/analyses/preload.h>
 #include <squeal/base/errors.h>
+#include <squeal/base/memory_estimate.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/mac.h>
 #include <squeal/io/matrix_export.h>
@@ -128,6 +129,16 @@ namespace squeal
                 << " sweep point(s) written to matrices/ (MatrixMarket)"
                 << std::endl;
         }
+      report_memory_estimate(
+        comm,
+        pcout.is_active() ? &pcout.get_stream() : nullptr,
+        model->n_dofs(),
+        factorisation_bytes(
+          model->parts().parts[0].matrix->n_nonzero_elements(),
+          model->n_dofs(),
+          true),
+        "an LDL^T of the stiffness; a full solve's subspace comes on top "
+        "(estimated after its inertia count)");
     }
 
     std::vector<parameters::ScalarPoint>

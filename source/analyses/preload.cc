@@ -10,6 +10,7 @@
 #include <deal.II/numerics/data_out_faces.h>
 
 #include <squeal/analyses/preload.h>
+#include <squeal/base/memory_estimate.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/io/face_output.h>
 #include <squeal/io/output_directory.h>
@@ -65,6 +66,16 @@ namespace squeal
               << "xyz"[hold.component] << " held at (" << held[0] << ", "
               << held[1] << ", " << held[2] << ") m";
       pcout << std::endl;
+      const std::size_t nonzeros = Utilities::MPI::n_mpi_processes(comm) == 1 ?
+                                     stiffness.n_nonzero_elements() :
+                                     stiffness_mpi.n_nonzero_elements();
+      report_memory_estimate(comm,
+                             pcout.is_active() ? &pcout.get_stream() : nullptr,
+                             model.n_dofs(),
+                             factorisation_bytes(nonzeros,
+                                                 model.n_dofs(),
+                                                 false),
+                             "MUMPS's LU of the contact system");
     }
 
     void

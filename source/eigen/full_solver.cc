@@ -7,6 +7,7 @@
 #include <deal.II/lac/parpack_solver.h>
 #include <deal.II/lac/solver_control.h>
 
+#include <squeal/base/memory_estimate.h>
 #include <squeal/eigen/full_solver.h>
 
 #include <petscksp.h>
@@ -632,6 +633,28 @@ namespace squeal
       FullSolveReport r;
       r.symmetric_in_band  = counts[2] - counts[1];
       r.symmetric_in_basis = counts[3];
+      // the memory the first full solve of a run will need, before it
+      // needs it: the LDL^T of K_s - sigma M and the subspace V, M V, C V,
+      // K V of about 3 k vectors (the k modes and their 2 k static
+      // corrections), with the corrections' block and its products while
+      // they are appended: 8 (4 x 3 k + 6 x 2 k) bytes per DoF (k only
+      // without friction and damping)
+      static bool estimated = false;
+      if (!estimated)
+        {
+          estimated           = true;
+          const double k      = r.symmetric_in_basis;
+          const double n_dofs = M.m();
+          report_memory_estimate(
+            M.get_mpi_communicator(),
+            pcout.is_active() ? &pcout.get_stream() : nullptr,
+            M.m(),
+            factorisation_bytes(K_s.n_nonzero_elements(), M.m(), true) +
+              8. * n_dofs * (symmetric ? 4. * k : 24. * k),
+            "the full solver's LDL^T and its subspace of about " +
+              std::to_string(symmetric ? int(k) : 3 * int(k)) +
+              " vectors with their M, C and K products");
+        }
 
       const double                    t_count = seconds_since(start);
       std::unique_ptr<SymmetricModes> slepc;

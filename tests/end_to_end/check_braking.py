@@ -8,6 +8,8 @@ Runs build/squeal on the coarse TriboBrake for 6 ms and checks:
   summary.csv, contact_history.h5, transient.pvd, contact.pvd, animation.pvd,
   parameters.prm), every entry of the .pvd files loading through VTK's
   reader (squeal-check-pvd), and scripts/plot_braking.py;
+- the memory estimate printed after the set-up within a factor 2 of the
+  peak the run measures at its end;
 - Coulomb's law in the sums: |F_T| <= mu F_N at every sample (1e-9), and
   F_T = mu F_N (1e-3: each node's slip direction follows the small
   transverse vibration velocities besides the disc's sliding) while every
@@ -47,7 +49,7 @@ import subprocess
 import sys
 import time
 
-from checks import check, finish, pvd_loads
+from checks import check, finish, memory_estimate_holds, pvd_loads  # noqa: E402
 
 squeal, tribology, prm, work = sys.argv[1:5]
 prm = os.path.abspath(prm)
@@ -76,7 +78,10 @@ def table(path):
         return list(csv.DictReader(l for l in f if not l.startswith("#")))
 
 
-out, _ = run("sparse")
+out, r = run("sparse")
+ok, said = memory_estimate_holds(r.stdout)
+check("the memory estimate after the set-up within 2x of the peak", ok, said,
+      show=True)
 files = ["forces.csv", "probes.csv", "spectrum.csv", "envelope.csv", "summary.csv",
          "contact_history.h5", "transient.pvd", "contact.pvd", "animation.pvd",
          "parameters.prm"]

@@ -4,6 +4,8 @@
 usage: check_preload.py SQUEAL PRM WORKDIR
 
 Runs build/squeal on the coarse preload and checks:
+- the memory estimate printed after the set-up (in use plus MUMPS's LU)
+  within a factor 2 of the peak the run measures at its end;
 - the output files (contact.csv, preload_summary.txt, contact.pvd,
   contact_surface.vtu, displacement.vtu, parameters.prm), contact.pvd's
   entries loading through VTK's reader, and the pressure map of
@@ -50,7 +52,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import pvd_loads  # noqa: E402
+from checks import memory_estimate_holds, pvd_loads  # noqa: E402
 
 squeal, prm, work = sys.argv[1:4]
 prm = os.path.abspath(prm)
@@ -89,6 +91,10 @@ def run(name, extra="", mpi=0):
 
 
 out, s, rows = run("sliding")
+ok, said = memory_estimate_holds(run.stdout)
+if not ok:
+    fail(f"start-of-run memory estimate: {said}")
+print(f"start-of-run memory estimate within 2x of the peak: ok ({said})")
 for f in ["contact.csv", "preload_summary.txt", "contact.pvd",
           "contact_surface.vtu", "displacement.vtu", "parameters.prm"]:
     if not os.path.isfile(os.path.join(out, f)):

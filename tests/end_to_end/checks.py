@@ -109,3 +109,24 @@ end
         every_pvd_loads(squeal, out)
     return out, r
 
+
+
+def memory_estimate_holds(stdout, factor=2.):
+    """Whether a run's estimate of its peak memory (the largest of its
+    `Memory: U MB in use ...; estimated peak E MB` lines, printed after the
+    set-up and by the first full solve after its count) lies within FACTOR
+    of the peak it measured at its end (`Peak memory: P MB`), and is at
+    least what was in use when it was printed. Returns (ok, detail)."""
+    use = estimate = peak = None
+    for line in stdout.splitlines():
+        line = line.strip()
+        if line.startswith("Memory: "):
+            e = float(line.split("estimated peak ")[1].split()[0])
+            if estimate is None or e > estimate:
+                use, estimate = float(line.split()[1]), e
+        elif line.startswith("Peak memory: "):
+            peak = float(line.split()[2])
+    if estimate is None or peak is None:
+        return False, "no 'Memory: ... estimated peak' or 'Peak memory' line"
+    ok = use <= estimate and peak / factor <= estimate <= peak * factor
+    return ok, f"in use {use} MB, estimated peak {estimate} MB, peak {peak} MB"

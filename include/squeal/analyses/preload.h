@@ -12,8 +12,8 @@
  * holds) at the nominal parameters of the file; the scene's point holds hold
  * single components (the TriboBrake's loading arm).
  *
- * Serial: the contact solve is a direct solve of the whole augmented system;
- * under mpirun the structure's rows are distributed and MUMPS solves it.
+ * MUMPS's LU solves the augmented contact system: serially on the one
+ * process, under mpirun with the structure's rows distributed.
  */
 
 #include <deal.II/base/conditional_ostream.h>
