@@ -75,6 +75,17 @@ namespace squeal
           EPSDestroy(&eps);
         }
 
+        // Frees the eigensolver's Krylov basis (some 2 x wanted vectors)
+        // once the modes are copied out; the factorisation of solver()
+        // stays (destroying the EPS would reset it with the ST's KSP).
+        void
+        release_basis()
+        {
+          BV bv;
+          check(EPSGetBV(eps, &bv), "EPSGetBV");
+          check(BVResize(bv, 1, PETSC_FALSE), "BVResize");
+        }
+
         SymmetricModes(const SymmetricModes &) = delete;
         SymmetricModes &
         operator=(const SymmetricModes &) = delete;
@@ -336,15 +347,24 @@ namespace squeal
               keep.push_back(j);
           if (keep.empty())
             return;
-          Eigen::MatrixXd Tk(T.rows(), keep.size()), MTk(T.rows(), keep.size()),
-            gram_k(keep.size(), keep.size());
+          // the kept columns, in place (memory: the blocks are n x 2 k)
+          Eigen::MatrixXd gram_k(keep.size(), keep.size());
           for (unsigned int a = 0; a < keep.size(); ++a)
             {
-              Tk.col(a)  = T.col(keep[a]);
-              MTk.col(a) = MT.col(keep[a]);
+              if (int(a) != keep[a])
+                {
+                  T.col(a)  = T.col(keep[a]);
+                  MT.col(a) = MT.col(keep[a]);
+                }
               for (unsigned int b = 0; b < keep.size(); ++b)
                 gram_k(a, b) = gram(keep[a], keep[b]);
             }
+          Eigen::MatrixXd Tk  = keep.size() == std::size_t(T.cols()) ?
+                                  std::move(T) :
+                                  Eigen::MatrixXd(T.leftCols(keep.size()));
+          Eigen::MatrixXd MTk = keep.size() == std::size_t(MT.cols()) ?
+                                  std::move(MT) :
+                                  Eigen::MatrixXd(MT.leftCols(keep.size()));
           T.resize(0, 0);
           MT.resize(0, 0);
           Eigen::MatrixXd S;
@@ -360,11 +380,14 @@ namespace squeal
             }
           else
             S = internal::orthonormalising_transform(gram_k);
-          const Eigen::MatrixXd N       = Tk * S;
-          const Eigen::MatrixXd NM      = MTk * S;
-          const Eigen::MatrixXd NC      = damping_times(N);
-          const Eigen::MatrixXd NK      = multiply(K, N);
-          const auto            project = [&](const Eigen::MatrixXd &X,
+          // each block freed once used
+          Eigen::MatrixXd N = Tk * S;
+          Tk.resize(0, 0);
+          Eigen::MatrixXd NM = MTk * S;
+          MTk.resize(0, 0);
+          Eigen::MatrixXd NC      = damping_times(N);
+          Eigen::MatrixXd NK      = multiply(K, N);
+          const auto      project = [&](const Eigen::MatrixXd &X,
                                    const Eigen::MatrixXd &Y) {
             Eigen::MatrixXd A = X.transpose() * Y;
             sum_over_ranks(A, comm);
@@ -372,10 +395,10 @@ namespace squeal
           };
           if (V.cols() == 0)
             {
-              V  = N;
-              WM = NM;
-              WC = NC;
-              WK = NK;
+              V  = std::move(N);
+              WM = std::move(NM);
+              WC = std::move(NC);
+              WK = std::move(NK);
               Mr = project(V, WM);
               Cr = project(V, WC);
               Kr = project(V, WK);
@@ -392,10 +415,12 @@ namespace squeal
           grow(Mr, WM, NM);
           grow(Cr, WC, NC);
           grow(Kr, WK, NK);
-          const auto extend = [](Eigen::MatrixXd &X, const Eigen::MatrixXd &Y) {
+          // X = [X Y], Y freed
+          const auto extend = [](Eigen::MatrixXd &X, Eigen::MatrixXd &Y) {
             Eigen::MatrixXd Z(Y.rows(), X.cols() + Y.cols());
             Z << X, Y;
-            X = Z;
+            X.swap(Z);
+            Y.resize(0, 0);
           };
           extend(V, N);
           extend(WM, NM);
@@ -635,24 +660,26 @@ namespace squeal
       r.symmetric_in_basis = counts[3];
       // the memory the first full solve of a run will need, before it
       // needs it: the LDL^T of K_s - sigma M and the subspace V, M V, C V,
-      // K V of about 3 k vectors (the k modes and their 2 k static
-      // corrections), with the corrections' block and its products while
-      // they are appended: 8 (4 x 3 k + 6 x 2 k) bytes per DoF (k only
-      // without friction and damping)
+      // K V of m vectors, 43 bytes per DoF and vector (the four blocks and
+      // the 1.35x of growing them, measured on the coarse passenger-car
+      // brake); m = 3 k (the k modes and their 2 k static corrections) plus
+      // 6 per mode in the band for the refinement (measured: 2.8 on the
+      // TriboBrake, 10.6 on the brake); m = k without friction and damping
       static bool estimated = false;
       if (!estimated)
         {
-          estimated           = true;
-          const double k      = r.symmetric_in_basis;
+          estimated      = true;
+          const double k = r.symmetric_in_basis;
+          const double m = symmetric ? k : 3. * k + 6. * r.symmetric_in_band;
           const double n_dofs = M.m();
           report_memory_estimate(
             M.get_mpi_communicator(),
             pcout.is_active() ? &pcout.get_stream() : nullptr,
             M.m(),
             factorisation_bytes(K_s.n_nonzero_elements(), M.m(), true) +
-              8. * n_dofs * (symmetric ? 4. * k : 24. * k),
+              43. * n_dofs * m,
             "the full solver's LDL^T and its subspace of about " +
-              std::to_string(symmetric ? int(k) : 3 * int(k)) +
+              std::to_string(int(m)) +
               " vectors with their M, C and K products");
         }
 
@@ -689,8 +716,13 @@ namespace squeal
           Phi.col(j) = internal::local_part(modes[j].re, owned);
           omega2[j]  = modes[j].omega2.real();
         }
+      // the modes live on in Phi; the eigensolver's basis is not needed
+      modes.clear();
+      modes.shrink_to_fit();
+      if (slepc)
+        slepc->release_basis();
       Subspace s(A);
-      s.append(Phi, true);
+      s.append(std::move(Phi), true);
       s.fix_modal_damping(K_s, model.modal);
       // static corrections of the damping and the friction forces
       // (K - K_s) Phi = K Phi - M Phi Omega^2 (V = Phi to the eigensolver's
@@ -700,7 +732,10 @@ namespace squeal
           const int       m = s.V.cols();
           Eigen::MatrixXd forces(n, 2 * m);
           forces << s.WC, s.WK - s.WM * omega2.asDiagonal();
-          s.append(internal::solve_block(factorised, K_s, forces));
+          Eigen::MatrixXd corrections =
+            internal::solve_block(factorised, K_s, forces);
+          forces.resize(0, 0);
+          s.append(std::move(corrections));
         }
       const double t_projection = seconds_since(start) - t_symmetric;
 
