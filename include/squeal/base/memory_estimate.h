@@ -27,6 +27,7 @@ namespace squeal
    * with @p nonzeros stored entries (n = @p n_dofs): 48 bytes per nonzero
    * for an LU, 28 for a symmetric LDL^T (@p symmetric), at 91 374 rows,
    * times (n / 91 374)^(1/3) above that size (no smaller below it).
+   * Throws nothing.
    */
   double
   factorisation_bytes(std::size_t                     nonzeros,
@@ -41,6 +42,7 @@ namespace squeal
    * estimate of what the analysis still allocates, summed over the ranks).
    * Per DoF of @p n_dofs. Collective.
    * @returns the estimated peak [MB].
+   * @throws what deal.II's MPI sum throws if the ranks' communicator fails.
    */
   double
   report_memory_estimate(MPI_Comm                        comm,
