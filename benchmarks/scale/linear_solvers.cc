@@ -10,7 +10,8 @@
 //             GMRES(100) when A is not symmetric, with algebraic multigrid)
 //   SHIFT_HZ  s = (2 pi SHIFT_HZ)^2, the full solver's shift (default 1000)
 //   RHS       right-hand sides solved one after the other (default 8)
-//   TOL       the Krylov solver's relative residual (default 1e-10); mumps-lu-blr: the
+//   TOL       the Krylov solver's relative residual (default 1e-10);
+//   mumps-lu-blr: the
 //             block low-rank dropping threshold CNTL(7) (default 1e-8)
 // The right-hand sides are A x for pseudo-random x (entries in [-1, 1],
 // a fixed generator), so the error of each solve is known. PETSc options
@@ -54,8 +55,7 @@ namespace
   {
     Utilities::System::MemoryStats s;
     Utilities::System::get_memory_stats(s);
-    return Utilities::MPI::sum(double(peak ? s.VmHWM : s.VmRSS), comm) /
-           1024.;
+    return Utilities::MPI::sum(double(peak ? s.VmHWM : s.VmRSS), comm) / 1024.;
   }
 
   void
@@ -166,8 +166,8 @@ main(int argc, char **argv)
       const std::string dir = argv[1], point = argv[2], solver = argv[3];
       const double      shift_hz = argc > 4 ? std::stod(argv[4]) : 1000.;
       const unsigned    n_rhs    = argc > 5 ? std::stoul(argv[5]) : 8;
-      const double      tol =
-        argc > 6 ? std::stod(argv[6]) : (solver == "mumps-lu-blr" ? 1e-8 : 1e-10);
+      const double      tol      = argc > 6 ? std::stod(argv[6]) :
+                                              (solver == "mumps-lu-blr" ? 1e-8 : 1e-10);
       const std::vector<std::string> known{"mumps-lu",
                                            "mumps-ldlt",
                                            "mumps-lu-blr",
@@ -183,23 +183,23 @@ main(int argc, char **argv)
       const double s = std::pow(2. * M_PI * shift_hz, 2);
 
       // A = K + s M as triplets (every rank reads the files)
-      const std::string   stem = dir + "/point_" + point;
-      squeal::io::Triplets A   = squeal::io::read_matrix_market(stem + "_K.mtx");
+      const std::string    stem = dir + "/point_" + point;
+      squeal::io::Triplets A = squeal::io::read_matrix_market(stem + "_K.mtx");
       {
         const auto M = squeal::io::read_matrix_market(stem + "_M.mtx");
         for (const auto &[i, j, v] : M.entries)
           A.entries.emplace_back(i, j, s * v);
       }
-      const unsigned int n    = A.rows;
-      const auto         dofs = read_dofs(dir + "/dofs.csv", n);
+      const unsigned int n     = A.rows;
+      const auto         dofs  = read_dofs(dir + "/dofs.csv", n);
       const unsigned int ranks = Utilities::MPI::n_mpi_processes(comm);
       if (solver == "umfpack" && ranks > 1)
         throw std::runtime_error("umfpack runs on one rank");
 
-      double       setup = 0., solve = 0., error = 0., iterations = 0.;
-      std::size_t  nonzeros = 0;
-      double       before   = 0.;
-      double       factor   = 0.;
+      double      setup = 0., solve = 0., error = 0., iterations = 0.;
+      std::size_t nonzeros = 0;
+      double      before   = 0.;
+      double      factor   = 0.;
       if (solver == "umfpack")
         {
           DynamicSparsityPattern dsp(n, n);
@@ -213,8 +213,8 @@ main(int argc, char **argv)
           nonzeros = S.n_nonzero_elements();
           A.entries.clear();
           A.entries.shrink_to_fit();
-          before       = memory_mb(false, comm);
-          const auto t = std::chrono::steady_clock::now();
+          before                = memory_mb(false, comm);
+          const auto          t = std::chrono::steady_clock::now();
           SparseDirectUMFPACK direct;
           direct.initialize(S);
           setup = seconds_since(t);

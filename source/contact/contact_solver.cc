@@ -70,25 +70,24 @@ namespace squeal
         // (the serial K) owns all. MUMPS's LU: on the coarse passenger-car
         // brake's shifted stiffness 1.4x faster to factorise than UMFPACK,
         // 9x faster to solve and 2.3x smaller (benchmarks/scale/README.md).
+        const std::pair<types::global_dof_index, types::global_dof_index>
+          range =
+            K.serial ? std::make_pair(0u, n) : K.distributed->local_range();
         // f(row, columns, values) for every row of K this rank holds
-        const auto for_each_row = [&K](const auto &f) {
+        const auto for_each_row = [&K, range](const auto &f) {
           std::vector<types::global_dof_index> columns;
           std::vector<double>                  values;
-          const auto                           range =
-            K.serial ? std::make_pair(types::global_dof_index(0),
-                                      types::global_dof_index(K.serial->m())) :
-                                                 K.distributed->local_range();
+          const auto copy = [&](auto e, const auto end) {
+            for (; e != end; ++e)
+              {
+                columns.push_back(e->column());
+                values.push_back(e->value());
+              }
+          };
           for (auto i = range.first; i < range.second; ++i)
             {
               columns.clear();
               values.clear();
-              const auto copy = [&](auto e, const auto end) {
-                for (; e != end; ++e)
-                  {
-                    columns.push_back(e->column());
-                    values.push_back(e->value());
-                  }
-              };
               if (K.serial)
                 copy(K.serial->begin(i), K.serial->end(i));
               else
@@ -96,9 +95,6 @@ namespace squeal
               f(i, columns, values);
             }
         };
-        const std::pair<types::global_dof_index, types::global_dof_index>
-          range =
-            K.serial ? std::make_pair(0u, n) : K.distributed->local_range();
         const unsigned int rank = Utilities::MPI::this_mpi_process(K.comm),
                            size = Utilities::MPI::n_mpi_processes(K.comm);
         IndexSet owned(N);

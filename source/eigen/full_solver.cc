@@ -14,6 +14,7 @@
 #include <slepceps.h>
 
 #include "dense_block.h"
+#include "symmetric_modes.h"
 
 #include <algorithm>
 #include <chrono>
@@ -26,8 +27,10 @@ namespace squeal
   namespace eigen
   {
     using namespace dealii;
+    using internal::ArpackModes;
     using internal::multiply;
     using internal::sum_over_ranks;
+    using internal::SymmetricModes;
 
     namespace
     {
@@ -44,191 +47,6 @@ namespace squeal
                                              start)
           .count();
       }
-
-      // The symmetric modes up to the basis frequency, by shift-and-invert
-      // Krylov-Schur with a Cholesky factorisation that stays alive as the
-      // preconditioner P^-1 of the refinement.
-      class SymmetricModes
-      {
-      public:
-        SymmetricModes(const PETScMatrix &K,
-                       const PETScMatrix &M,
-                       const double       sigma,
-                       const double       tolerance)
-        {
-          check(EPSCreate(M.get_mpi_communicator(), &eps), "EPSCreate");
-          check(EPSSetOperators(eps, K, M), "EPSSetOperators");
-          check(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
-          check(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
-          check(EPSSetTarget(eps, sigma), "EPSSetTarget");
-          check(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE),
-                "EPSSetWhichEigenpairs");
-          check(EPSSetTolerances(eps, tolerance, 2000), "EPSSetTolerances");
-          ST st;
-          check(EPSGetST(eps, &st), "EPSGetST");
-          ksp = static_cast<KSP>(internal::shift_invert_with_mumps(st, true));
-          check(EPSSetFromOptions(eps), "EPSSetFromOptions");
-        }
-
-        ~SymmetricModes()
-        {
-          EPSDestroy(&eps);
-        }
-
-        // Frees the eigensolver's Krylov basis (some 2 x wanted vectors)
-        // once the modes are copied out; the factorisation of solver()
-        // stays (destroying the EPS would reset it with the ST's KSP).
-        void
-        release_basis()
-        {
-          BV bv;
-          check(EPSGetBV(eps, &bv), "EPSGetBV");
-          check(BVResize(bv, 1, PETSC_FALSE), "BVResize");
-        }
-
-        SymmetricModes(const SymmetricModes &) = delete;
-        SymmetricModes &
-        operator=(const SymmetricModes &) = delete;
-
-        // The eigenpairs with omega^2 below @p top, M-orthonormal, sorted;
-        // @p wanted of them exist (the inertia count).
-        std::vector<UndampedMode>
-        solve(const PETScMatrix &M, const unsigned int wanted, const double top)
-        {
-          std::vector<UndampedMode> modes;
-          for (unsigned int attempt = 0; attempt < 2; ++attempt)
-            {
-              const PetscInt nev =
-                std::min<PetscInt>(M.m(), wanted + 2 + 10 * attempt);
-              check(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT),
-                    "EPSSetDimensions");
-              check(EPSSolve(eps), "EPSSolve");
-              PetscInt nconv;
-              check(EPSGetConverged(eps, &nconv), "EPSGetConverged");
-              modes.clear();
-              PETScVector xr(M.locally_owned_range_indices(),
-                             M.get_mpi_communicator());
-              for (PetscInt i = 0; i < nconv; ++i)
-                {
-                  PetscScalar kr, ki;
-                  check(EPSGetEigenpair(eps, i, &kr, &ki, xr, nullptr),
-                        "EPSGetEigenpair");
-                  if (kr < top)
-                    modes.push_back({{kr, 0.}, xr, PETScVector()});
-                }
-              if (modes.size() == wanted)
-                break;
-            }
-          std::sort(modes.begin(),
-                    modes.end(),
-                    [](const auto &a, const auto &b) {
-                      return a.omega2.real() < b.omega2.real();
-                    });
-          return modes;
-        }
-
-        // the factorised K - sigma M
-        void *
-        solver() const
-        {
-          return ksp;
-        }
-
-      private:
-        EPS eps;
-        KSP ksp;
-      };
-
-      // The same with PARPACK (implicitly restarted Lanczos, mode 3:
-      // shift-and-invert of the symmetric pencil) through deal.II's
-      // PArpackSolver, the factorisation a DirectSolver (MUMPS Cholesky).
-      class ArpackModes
-      {
-      public:
-        ArpackModes(const PETScMatrix &K,
-                    const PETScMatrix &M,
-                    const double       sigma,
-                    const double       tolerance)
-          : K(K)
-          , sigma(sigma)
-          , tolerance(tolerance)
-        {
-          P.reinit(K);
-          P.copy_from(K);
-          P.add(-sigma, M);
-          factorisation = std::make_unique<DirectSolver>(P, true);
-        }
-
-        std::vector<UndampedMode>
-        solve(const PETScMatrix &M, const unsigned int wanted, const double top)
-        {
-          // x = (K - sigma M)^-1 b for PARPACK
-          struct Inverse
-          {
-            const DirectSolver &solver;
-            void
-            vmult(PETScVector &x, const PETScVector &b) const
-            {
-              solver.solve(b, x);
-            }
-          } inverse{*factorisation};
-          const IndexSet            owned = M.locally_owned_range_indices();
-          const MPI_Comm            comm  = M.get_mpi_communicator();
-          std::vector<UndampedMode> modes;
-          for (unsigned int attempt = 0; attempt < 2; ++attempt)
-            {
-              const unsigned int nev =
-                std::min<unsigned int>(M.m() / 2 - 1,
-                                       wanted + 2 + 10 * attempt);
-              using Arpack = PArpackSolver<PETScVector>;
-              SolverControl                control(10000, tolerance);
-              const Arpack::AdditionalData data(
-                std::min<unsigned int>(2 * nev + 2, M.m()),
-                Arpack::largest_magnitude,
-                true,
-                3);
-              Arpack arpack(control, comm, data);
-              arpack.reinit(owned);
-              arpack.set_shift(sigma);
-              std::vector<std::complex<double>> lambda(nev);
-              std::vector<PETScVector> x(nev, PETScVector(owned, comm));
-              try
-                {
-                  arpack.solve(K, M, inverse, lambda, x, nev);
-                }
-              catch (const std::exception &e)
-                {
-                  throw std::runtime_error(
-                    std::string("full solver: PARPACK failed: ") + e.what());
-                }
-              modes.clear();
-              for (unsigned int i = 0; i < nev; ++i)
-                if (lambda[i].real() < top)
-                  modes.push_back(
-                    {{lambda[i].real(), 0.}, x[i], PETScVector()});
-              if (modes.size() == wanted)
-                break;
-            }
-          std::sort(modes.begin(),
-                    modes.end(),
-                    [](const auto &a, const auto &b) {
-                      return a.omega2.real() < b.omega2.real();
-                    });
-          return modes;
-        }
-
-        void *
-        solver() const
-        {
-          return factorisation->handle();
-        }
-
-      private:
-        const PETScMatrix            &K;
-        const double                  sigma, tolerance;
-        PETScMatrix                   P;
-        std::unique_ptr<DirectSolver> factorisation;
-      };
 
       // The subspace V of the refinement with its products M V, C V, K V
       // and the projected matrices V^T A V (local rows; V M-orthonormal).

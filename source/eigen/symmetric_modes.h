@@ -1,0 +1,226 @@
+// The modes of the symmetric problem (K_s, M) below the full solver's basis
+// frequency, by SLEPc (shift-and-invert Krylov-Schur) or PARPACK, each with
+// a factorisation of K_s - sigma M that the full solver reuses for its
+// corrections (see full_solver.h). Included by full_solver.cc only.
+
+#ifndef squeal_eigen_symmetric_modes_h
+#define squeal_eigen_symmetric_modes_h
+
+#include <deal.II/lac/parpack_solver.h>
+#include <deal.II/lac/solver_control.h>
+
+#include <squeal/eigen/qep_solver.h>
+
+#include <slepceps.h>
+
+#include "dense_block.h"
+
+#include <algorithm>
+#include <complex>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    namespace internal
+    {
+      inline void
+      check_eps(const PetscErrorCode ierr, const char *what)
+      {
+        check_petsc(ierr, "full solver", what);
+      }
+
+      // The symmetric modes up to the basis frequency, by shift-and-invert
+      // Krylov-Schur with a Cholesky factorisation that stays alive as the
+      // preconditioner P^-1 of the refinement.
+      class SymmetricModes
+      {
+      public:
+        SymmetricModes(const PETScMatrix &K,
+                       const PETScMatrix &M,
+                       const double       sigma,
+                       const double       tolerance)
+        {
+          check_eps(EPSCreate(M.get_mpi_communicator(), &eps), "EPSCreate");
+          check_eps(EPSSetOperators(eps, K, M), "EPSSetOperators");
+          check_eps(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
+          check_eps(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
+          check_eps(EPSSetTarget(eps, sigma), "EPSSetTarget");
+          check_eps(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE),
+                    "EPSSetWhichEigenpairs");
+          check_eps(EPSSetTolerances(eps, tolerance, 2000), "EPSSetTolerances");
+          ST st;
+          check_eps(EPSGetST(eps, &st), "EPSGetST");
+          ksp = static_cast<KSP>(internal::shift_invert_with_mumps(st, true));
+          check_eps(EPSSetFromOptions(eps), "EPSSetFromOptions");
+        }
+
+        ~SymmetricModes()
+        {
+          EPSDestroy(&eps);
+        }
+
+        // Frees the eigensolver's Krylov basis (some 2 x wanted vectors)
+        // once the modes are copied out; the factorisation of solver()
+        // stays (destroying the EPS would reset it with the ST's KSP).
+        void
+        release_basis()
+        {
+          BV bv;
+          check_eps(EPSGetBV(eps, &bv), "EPSGetBV");
+          check_eps(BVResize(bv, 1, PETSC_FALSE), "BVResize");
+        }
+
+        SymmetricModes(const SymmetricModes &) = delete;
+        SymmetricModes &
+        operator=(const SymmetricModes &) = delete;
+
+        // The eigenpairs with omega^2 below @p top, M-orthonormal, sorted;
+        // @p wanted of them exist (the inertia count).
+        std::vector<UndampedMode>
+        solve(const PETScMatrix &M, const unsigned int wanted, const double top)
+        {
+          std::vector<UndampedMode> modes;
+          for (unsigned int attempt = 0; attempt < 2; ++attempt)
+            {
+              const PetscInt nev =
+                std::min<PetscInt>(M.m(), wanted + 2 + 10 * attempt);
+              check_eps(
+                EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT),
+                "EPSSetDimensions");
+              check_eps(EPSSolve(eps), "EPSSolve");
+              PetscInt nconv;
+              check_eps(EPSGetConverged(eps, &nconv), "EPSGetConverged");
+              modes.clear();
+              PETScVector xr(M.locally_owned_range_indices(),
+                             M.get_mpi_communicator());
+              for (PetscInt i = 0; i < nconv; ++i)
+                {
+                  PetscScalar kr, ki;
+                  check_eps(EPSGetEigenpair(eps, i, &kr, &ki, xr, nullptr),
+                            "EPSGetEigenpair");
+                  if (kr < top)
+                    modes.push_back({{kr, 0.}, xr, PETScVector()});
+                }
+              if (modes.size() == wanted)
+                break;
+            }
+          std::sort(modes.begin(),
+                    modes.end(),
+                    [](const auto &a, const auto &b) {
+                      return a.omega2.real() < b.omega2.real();
+                    });
+          return modes;
+        }
+
+        // the factorised K - sigma M
+        void *
+        solver() const
+        {
+          return ksp;
+        }
+
+      private:
+        EPS eps;
+        KSP ksp;
+      };
+
+      // The same with PARPACK (implicitly restarted Lanczos, mode 3:
+      // shift-and-invert of the symmetric pencil) through deal.II's
+      // PArpackSolver, the factorisation a DirectSolver (MUMPS Cholesky).
+      class ArpackModes
+      {
+      public:
+        ArpackModes(const PETScMatrix &K,
+                    const PETScMatrix &M,
+                    const double       sigma,
+                    const double       tolerance)
+          : K(K)
+          , sigma(sigma)
+          , tolerance(tolerance)
+        {
+          P.reinit(K);
+          P.copy_from(K);
+          P.add(-sigma, M);
+          factorisation = std::make_unique<DirectSolver>(P, true);
+        }
+
+        std::vector<UndampedMode>
+        solve(const PETScMatrix &M, const unsigned int wanted, const double top)
+        {
+          // x = (K - sigma M)^-1 b for PARPACK
+          struct Inverse
+          {
+            const DirectSolver &solver;
+            void
+            vmult(PETScVector &x, const PETScVector &b) const
+            {
+              solver.solve(b, x);
+            }
+          } inverse{*factorisation};
+          const dealii::IndexSet    owned = M.locally_owned_range_indices();
+          const MPI_Comm            comm  = M.get_mpi_communicator();
+          std::vector<UndampedMode> modes;
+          for (unsigned int attempt = 0; attempt < 2; ++attempt)
+            {
+              const unsigned int nev =
+                std::min<unsigned int>(M.m() / 2 - 1,
+                                       wanted + 2 + 10 * attempt);
+              using Arpack = dealii::PArpackSolver<PETScVector>;
+              dealii::SolverControl        control(10000, tolerance);
+              const Arpack::AdditionalData data(
+                std::min<unsigned int>(2 * nev + 2, M.m()),
+                Arpack::largest_magnitude,
+                true,
+                3);
+              Arpack arpack(control, comm, data);
+              arpack.reinit(owned);
+              arpack.set_shift(sigma);
+              std::vector<std::complex<double>> lambda(nev);
+              std::vector<PETScVector> x(nev, PETScVector(owned, comm));
+              try
+                {
+                  arpack.solve(K, M, inverse, lambda, x, nev);
+                }
+              catch (const std::exception &e)
+                {
+                  throw std::runtime_error(
+                    std::string("full solver: PARPACK failed: ") + e.what());
+                }
+              modes.clear();
+              for (unsigned int i = 0; i < nev; ++i)
+                if (lambda[i].real() < top)
+                  modes.push_back(
+                    {{lambda[i].real(), 0.}, x[i], PETScVector()});
+              if (modes.size() == wanted)
+                break;
+            }
+          std::sort(modes.begin(),
+                    modes.end(),
+                    [](const auto &a, const auto &b) {
+                      return a.omega2.real() < b.omega2.real();
+                    });
+          return modes;
+        }
+
+        void *
+        solver() const
+        {
+          return factorisation->handle();
+        }
+
+      private:
+        const PETScMatrix            &K;
+        const double                  sigma, tolerance;
+        PETScMatrix                   P;
+        std::unique_ptr<DirectSolver> factorisation;
+      };
+    } // namespace internal
+  }   // namespace eigen
+} // namespace squeal
+
+#endif
