@@ -10,7 +10,10 @@
 // - the export round trip: the read K has the model's norm (to 1e-13);
 // - the same number of eigenvalues in the band, matched one to one;
 // - frequencies within 1e-8 (relative) and real parts within 1e-6 |lambda|;
-// - the unstable pair is there in both, with its growth rate.
+// - the unstable pair is there in both, with its growth rate;
+// each for the full solver with its subspace products stored and
+// recomputed (BandOptions::store_products), the latter with every residual
+// below 1e-10.
 
 #include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/tracking.h>
@@ -37,6 +40,77 @@ namespace
     return A;
   }
 
+  // Checks the full solver's eigenvalues @p full against the dense ones
+  void
+  compare(const std::string                       &label,
+          const std::vector<eigen::EigenPair>     &full,
+          const std::vector<std::complex<double>> &dense_band)
+  {
+    using test_tools::check;
+    Eigen::MatrixXd cost(full.size(), dense_band.size());
+    for (unsigned int i = 0; i < full.size(); ++i)
+      for (unsigned int j = 0; j < dense_band.size(); ++j)
+        cost(i, j) =
+          std::abs(dense_band[j] - full[i].lambda) / std::abs(full[i].lambda);
+    const auto   match = eigen::optimal_assignment(cost);
+    double       df = 0., dre = 0.;
+    unsigned int unmatched = 0, unstable_full = 0, unstable_dense = 0;
+    double       growth_full = 0., growth_dense = 0.;
+    for (unsigned int i = 0; i < full.size(); ++i)
+      {
+        const auto f = full[i].lambda;
+        if (match[i] < 0)
+          {
+            ++unmatched;
+            continue;
+          }
+        const auto d = dense_band[match[i]];
+        df           = std::max(df, std::abs(f.imag() - d.imag()) / d.imag());
+        dre = std::max(dre, std::abs(f.real() - d.real()) / std::abs(d));
+        test_tools::verbose()
+          << "  " << f.imag() / (2 * M_PI) << " Hz: Re " << f.real()
+          << " (full), " << d.real() << " (dense)" << std::endl;
+        if (f.real() > 1e-6 * std::abs(f))
+          {
+            ++unstable_full;
+            growth_full = std::max(growth_full, f.real());
+          }
+      }
+    for (const auto &d : dense_band)
+      if (d.real() > 1e-6 * std::abs(d))
+        {
+          ++unstable_dense;
+          growth_dense = std::max(growth_dense, d.real());
+        }
+    test_tools::verbose() << full.size() << " modes (full), "
+                          << dense_band.size()
+                          << " (dense); largest frequency error " << df
+                          << ", real-part error " << dre << " of |lambda|; "
+                          << "growth rate " << growth_full << " (full), "
+                          << growth_dense << " (dense)" << std::endl;
+    check(label + ": modes in the band: full = dense",
+          full.size(),
+          dense_band.size(),
+          0);
+    check(label + ": at least 10 modes in the band",
+          std::min<double>(full.size(), 10),
+          10,
+          0);
+    check(label + ": every full eigenvalue matched", unmatched, 0, 0);
+    check(label + ": frequencies within 1e-8", std::max(df, 1e-8), 1e-8, 0);
+    check(label + ": real parts within 1e-6 |lambda|",
+          std::max(dre, 1e-6),
+          1e-6,
+          0);
+    check(label + ": an unstable (locked-in) mode in the dense solve",
+          std::min(unstable_dense, 1u),
+          1,
+          0);
+    check(label + ": unstable modes: full = dense",
+          unstable_full,
+          unstable_dense,
+          0);
+  }
 } // namespace
 
 int
@@ -93,58 +167,21 @@ main(int argc, char **argv)
       dense_band.push_back(l);
 
 
-  Eigen::MatrixXd cost(full.size(), dense_band.size());
-  for (unsigned int i = 0; i < full.size(); ++i)
-    for (unsigned int j = 0; j < dense_band.size(); ++j)
-      cost(i, j) =
-        std::abs(dense_band[j] - full[i].lambda) / std::abs(full[i].lambda);
-  const auto   match = eigen::optimal_assignment(cost);
-  double       df = 0., dre = 0.;
-  unsigned int unmatched = 0, unstable_full = 0, unstable_dense = 0;
-  double       growth_full = 0., growth_dense = 0.;
-  for (unsigned int i = 0; i < full.size(); ++i)
-    {
-      const auto f = full[i].lambda;
-      if (match[i] < 0)
-        {
-          ++unmatched;
-          continue;
-        }
-      const auto d = dense_band[match[i]];
-      df           = std::max(df, std::abs(f.imag() - d.imag()) / d.imag());
-      dre          = std::max(dre, std::abs(f.real() - d.real()) / std::abs(d));
-      test_tools::verbose()
-        << "  " << f.imag() / (2 * M_PI) << " Hz: Re " << f.real()
-        << " (full), " << d.real() << " (dense)" << std::endl;
-      if (f.real() > 1e-6 * std::abs(f))
-        {
-          ++unstable_full;
-          growth_full = std::max(growth_full, f.real());
-        }
-    }
-  for (const auto &d : dense_band)
-    if (d.real() > 1e-6 * std::abs(d))
-      {
-        ++unstable_dense;
-        growth_dense = std::max(growth_dense, d.real());
-      }
-  test_tools::verbose() << full.size() << " modes (full), " << dense_band.size()
-                        << " (dense); largest frequency error " << df
-                        << ", real-part error " << dre << " of |lambda|; "
-                        << "growth rate " << growth_full << " (full), "
-                        << growth_dense << " (dense)" << std::endl;
-  check("modes in the band: full = dense", full.size(), dense_band.size(), 0);
-  check("at least 10 modes in the band",
-        std::min<double>(full.size(), 10),
-        10,
+  // the full solver with its subspace products stored (the default) and
+  // recomputed, each against the dense solve
+  eigen::BandOptions recomputed_band = band;
+  recomputed_band.store_products     = false;
+  eigen::FullSolveReport recomputed_report;
+  const auto             recomputed =
+    eigen::solve_full(parts, point, recomputed_band, quiet, &recomputed_report);
+  test_tools::verbose() << "recomputed products: largest residual "
+                        << recomputed_report.largest_residual << " after "
+                        << recomputed_report.rounds << " rounds" << std::endl;
+  check("recomputed products: every residual below 1e-10",
+        std::max(recomputed_report.largest_residual, 1e-10),
+        1e-10,
         0);
-  check("every full eigenvalue matched", unmatched, 0, 0);
-  check("frequencies within 1e-8", std::max(df, 1e-8), 1e-8, 0);
-  check("real parts within 1e-6 |lambda|", std::max(dre, 1e-6), 1e-6, 0);
-  check("an unstable (locked-in) mode in the dense solve",
-        std::min(unstable_dense, 1u),
-        1,
-        0);
-  check("unstable modes: full = dense", unstable_full, unstable_dense, 0);
+  compare("stored products", full, dense_band);
+  compare("recomputed products", recomputed, dense_band);
   return test_tools::finish();
 }

@@ -377,6 +377,7 @@ namespace squeal
         es.f_min, es.f_max, es.target_frequency, es.tolerance, initial_nev};
       band.residual_tolerance = es.residual_tolerance;
       band.symmetric_solver   = es.symmetric_solver;
+      band.store_products     = es.subspace_products == "stored";
       return band;
     }
 

@@ -154,6 +154,7 @@ namespace squeal
       const auto        &es    = prm.eigensolver;
       eigen::BandOptions band{0., f_max, es.target_frequency, es.tolerance, 40};
       band.symmetric_solver = es.symmetric_solver;
+      band.store_products   = es.subspace_products == "stored";
       ConditionalOStream   quiet(std::cout, false);
       updating::ModelModes result;
       // the reduced model's basis takes the modes up to basis_factor f_max

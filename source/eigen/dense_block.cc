@@ -215,6 +215,12 @@ namespace squeal
       Eigen::MatrixXd
       multiply(const PETScMatrix &A, const Eigen::MatrixXd &B)
       {
+        return multiply(static_cast<Mat>(A), B);
+      }
+
+      Eigen::MatrixXd
+      multiply(Mat A, const Eigen::MatrixXd &B)
+      {
         // Eigen's row-major sparse times row-major dense product reads each
         // nonzero once per block of columns and the rows of B contiguously
         // (PETSc 3.18's AIJ times dense streams the matrix once per four

@@ -41,6 +41,10 @@ namespace squeal
       Eigen::MatrixXd
       multiply(const PETScMatrix &A, const Eigen::MatrixXd &B);
 
+      /** The same for a PETSc AIJ matrix (MATSEQAIJ or MATMPIAIJ). */
+      Eigen::MatrixXd
+      multiply(Mat A, const Eigen::MatrixXd &B);
+
       /**
        * The locally owned rows of the sparse matrix @p A that hold a
        * nonzero value, as indices into the local range (ascending).

@@ -17,8 +17,10 @@
 #include "symmetric_modes.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -48,8 +50,6 @@ namespace squeal
           .count();
       }
 
-      // The subspace V of the refinement with its products M V, C V, K V
-      // and the projected matrices V^T A V (local rows; V M-orthonormal).
       // M, C, K and K_s of the model at a point
       struct PointMatrices
       {
@@ -65,48 +65,89 @@ namespace squeal
         }
       };
 
+      // The transpose of a sparse matrix, owned (freed with it)
+      struct Transposed
+      {
+        Mat t = nullptr;
+
+        explicit Transposed(const PETScMatrix &A)
+        {
+          check(MatTranspose(A, MAT_INITIAL_MATRIX, &t), "MatTranspose");
+        }
+        ~Transposed()
+        {
+          MatDestroy(&t);
+        }
+        Transposed(const Transposed &) = delete;
+        Transposed &
+        operator=(const Transposed &) = delete;
+      };
+
+      // X = [X Y] (the columns of a column-major block grow in place where
+      // the allocator can: no second copy of X), Y freed
+      void
+      extend(Eigen::MatrixXd &X, Eigen::MatrixXd &Y)
+      {
+        const Eigen::Index r = X.cols();
+        X.conservativeResize(Y.rows(), r + Y.cols());
+        X.rightCols(Y.cols()) = Y;
+        Y.resize(0, 0);
+      }
+
+      // The subspace V of the refinement (local rows; V M-orthonormal) and
+      // the projected matrices V^T A V. With stored products, M V, C V and
+      // K V are kept too (four n x r blocks); otherwise a product is formed
+      // when a block is appended or a Ritz vector is tested (one block).
       struct Subspace
       {
         const PETScMatrix &M, &C, &K;
         MPI_Comm           comm;
+        bool               stored;
         Eigen::MatrixXd    V, WM, WC, WK, Mr, Cr, Kr;
         // the modal damping U diag(d) U^T once fixed (local rows of U)
         Eigen::MatrixXd U;
         Eigen::VectorXd d;
+        // without stored products: C^T and K^T, made when the subspace
+        // first grows (the new rows of the projection are
+        // N^T A V = (A^T N)^T V)
+        std::unique_ptr<const Transposed> Ct, Kt;
 
         // an empty subspace of the model at a point
-        explicit Subspace(const PointMatrices &A)
+        Subspace(const PointMatrices &A, const bool stored)
           : M(A.M)
           , C(A.C)
           , K(A.K)
           , comm(A.M.get_mpi_communicator())
+          , stored(stored)
         {}
 
         // the subspace of a reduced basis with its stored products
         Subspace(const PETScMatrix &M,
                  const PETScMatrix &C,
                  const PETScMatrix &K,
-                 const Projection  &start)
+                 Projection       &&start)
           : M(M)
           , C(C)
           , K(K)
           , comm(M.get_mpi_communicator())
-          , V(start.V)
-          , WM(start.MV)
-          , WC(start.CV)
-          , WK(start.KV)
-          , Mr(start.Mr)
-          , Cr(start.Cr)
-          , Kr(start.Kr)
-          , U(start.modal_U)
-          , d(start.modal_d)
+          , stored(true)
+          , V(std::move(start.V))
+          , WM(std::move(start.MV))
+          , WC(std::move(start.CV))
+          , WK(std::move(start.KV))
+          , Mr(std::move(start.Mr))
+          , Cr(std::move(start.Cr))
+          , Kr(std::move(start.Kr))
+          , U(std::move(start.modal_U))
+          , d(std::move(start.modal_d))
         {}
 
-        // C N: the sparse (Rayleigh) C and the modal damping
+        // A N + U diag(d) U^T N: the sparse (Rayleigh) C or C^T and the
+        // modal damping
         Eigen::MatrixXd
-        damping_times(const Eigen::MatrixXd &N) const
+        damping_times(const Mat A, const Eigen::MatrixXd &N) const
         {
-          Eigen::MatrixXd CN = multiply(C, N);
+          Eigen::MatrixXd CN = multiply(A, N);
           if (U.cols() > 0)
             {
               Eigen::MatrixXd c = U.transpose() * N;
@@ -116,9 +157,26 @@ namespace squeal
           return CN;
         }
 
+        // C N
+        Eigen::MatrixXd
+        damping_times(const Eigen::MatrixXd &N) const
+        {
+          return damping_times(static_cast<Mat>(C), N);
+        }
+
+        // M V Q, C V Q and K V Q (n x columns of Q each)
+        std::array<Eigen::MatrixXd, 3>
+        products(const Eigen::MatrixXd &Q) const
+        {
+          if (stored)
+            return {WM * Q, WC * Q, WK * Q};
+          const Eigen::MatrixXd X = V * Q;
+          return {multiply(M, X), damping_times(X), multiply(K, X)};
+        }
+
         // Fixes the modal damping of @p modal on the current span (its
         // Ritz modes of K_s, M: the exact modes when the span holds them)
-        // and adds it to the stored C V and V^T C V.
+        // and adds it to V^T C V (and C V).
         void
         fix_modal_damping(const PETScMatrix                        &K_s,
                           const physics::MatrixParts::ModalDamping &modal)
@@ -128,9 +186,10 @@ namespace squeal
           Eigen::MatrixXd Ksr = V.transpose() * multiply(K_s, V);
           sum_over_ranks(Ksr, comm);
           const auto m = internal::subspace_modal_damping(Mr, Ksr, modal);
-          U            = WM * m.Psi;
-          d            = m.d;
-          WC += WM * m.B;
+          U = stored ? Eigen::MatrixXd(WM * m.Psi) : multiply(M, V * m.Psi);
+          d = m.d;
+          if (stored)
+            WC += WM * m.B;
           Cr += Mr * m.B;
         }
 
@@ -147,7 +206,10 @@ namespace squeal
           Eigen::VectorXd in_span = Eigen::VectorXd::Zero(T.cols());
           for (unsigned int pass = 0; pass < 2 && V.cols() > 0; ++pass)
             {
-              Eigen::MatrixXd coefficients = WM.transpose() * T;
+              // V^T M T
+              Eigen::MatrixXd coefficients =
+                stored ? Eigen::MatrixXd(WM.transpose() * T) :
+                         Eigen::MatrixXd(V.transpose() * multiply(M, T));
               sum_over_ranks(coefficients, comm);
               coefficients = Mr.llt().solve(coefficients);
               T -= V * coefficients;
@@ -177,14 +239,8 @@ namespace squeal
               for (unsigned int b = 0; b < keep.size(); ++b)
                 gram_k(a, b) = gram(keep[a], keep[b]);
             }
-          Eigen::MatrixXd Tk  = keep.size() == std::size_t(T.cols()) ?
-                                  std::move(T) :
-                                  Eigen::MatrixXd(T.leftCols(keep.size()));
-          Eigen::MatrixXd MTk = keep.size() == std::size_t(MT.cols()) ?
-                                  std::move(MT) :
-                                  Eigen::MatrixXd(MT.leftCols(keep.size()));
-          T.resize(0, 0);
-          MT.resize(0, 0);
+          T.conservativeResize(Eigen::NoChange, keep.size());
+          MT.conservativeResize(Eigen::NoChange, keep.size());
           Eigen::MatrixXd S;
           if (V.cols() == 0 && modes)
             {
@@ -199,13 +255,11 @@ namespace squeal
           else
             S = internal::orthonormalising_transform(gram_k);
           // each block freed once used
-          Eigen::MatrixXd N = Tk * S;
-          Tk.resize(0, 0);
-          Eigen::MatrixXd NM = MTk * S;
-          MTk.resize(0, 0);
-          Eigen::MatrixXd NC      = damping_times(N);
-          Eigen::MatrixXd NK      = multiply(K, N);
-          const auto      project = [&](const Eigen::MatrixXd &X,
+          Eigen::MatrixXd N = T * S;
+          T.resize(0, 0);
+          Eigen::MatrixXd NM = MT * S;
+          MT.resize(0, 0);
+          const auto project = [&](const Eigen::MatrixXd &X,
                                    const Eigen::MatrixXd &Y) {
             Eigen::MatrixXd A = X.transpose() * Y;
             sum_over_ranks(A, comm);
@@ -214,36 +268,55 @@ namespace squeal
           if (V.cols() == 0)
             {
               V  = std::move(N);
-              WM = std::move(NM);
-              WC = std::move(NC);
-              WK = std::move(NK);
-              Mr = project(V, WM);
-              Cr = project(V, WC);
-              Kr = project(V, WK);
+              Mr = project(V, NM);
+              if (stored)
+                {
+                  WM = std::move(NM);
+                  WC = damping_times(V);
+                  WK = multiply(K, V);
+                  Cr = project(V, WC);
+                  Kr = project(V, WK);
+                }
+              else
+                {
+                  Cr = project(V, damping_times(V));
+                  Kr = project(V, multiply(K, V));
+                }
               return;
             }
+          // [Ar, V^T A N; lower, N^T A N] with lower = N^T A V
           const auto grow = [&](Eigen::MatrixXd       &Ar,
-                                const Eigen::MatrixXd &W_old,
-                                const Eigen::MatrixXd &W_new) {
+                                const Eigen::MatrixXd &AN,
+                                const Eigen::MatrixXd &lower) {
             const int       r = V.cols(), q = N.cols();
             Eigen::MatrixXd A(r + q, r + q);
-            A << Ar, project(V, W_new), project(N, W_old), project(N, W_new);
-            Ar = A;
+            A << Ar, project(V, AN), lower, project(N, AN);
+            Ar.swap(A);
           };
-          grow(Mr, WM, NM);
-          grow(Cr, WC, NC);
-          grow(Kr, WK, NK);
-          // X = [X Y], Y freed
-          const auto extend = [](Eigen::MatrixXd &X, Eigen::MatrixXd &Y) {
-            Eigen::MatrixXd Z(Y.rows(), X.cols() + Y.cols());
-            Z << X, Y;
-            X.swap(Z);
-            Y.resize(0, 0);
-          };
+          if (stored)
+            {
+              Eigen::MatrixXd NC = damping_times(N), NK = multiply(K, N);
+              grow(Mr, NM, project(N, WM));
+              grow(Cr, NC, project(N, WC));
+              grow(Kr, NK, project(N, WK));
+              extend(WM, NM);
+              extend(WC, NC);
+              extend(WK, NK);
+            }
+          else
+            {
+              // N^T A V = (A^T N)^T V (M is symmetric)
+              if (!Ct)
+                {
+                  Ct = std::make_unique<const Transposed>(C);
+                  Kt = std::make_unique<const Transposed>(K);
+                }
+              grow(Mr, NM, project(NM, V));
+              NM.resize(0, 0);
+              grow(Cr, damping_times(N), project(damping_times(Ct->t, N), V));
+              grow(Kr, multiply(K, N), project(multiply(Kt->t, N), V));
+            }
           extend(V, N);
-          extend(WM, NM);
-          extend(WC, NC);
-          extend(WK, NK);
         }
       };
 
@@ -274,8 +347,13 @@ namespace squeal
         const int       m = pairs.size();
         Eigen::MatrixXd Qr, Qi;
         coordinates(pairs, s.V.cols(), Qr, Qi);
-        const Eigen::MatrixXd Mr = s.WM * Qr, Mi = s.WM * Qi, Cr = s.WC * Qr,
-                              Ci = s.WC * Qi, Kr = s.WK * Qr, Ki = s.WK * Qi;
+        // the products of the Ritz vectors V [Qr Qi]
+        Eigen::MatrixXd Q(Qr.rows(), 2 * m);
+        Q << Qr, Qi;
+        const auto AX = s.products(Q);
+        const auto Mr = AX[0].leftCols(m), Mi = AX[0].rightCols(m),
+                   Cr = AX[1].leftCols(m), Ci = AX[1].rightCols(m),
+                   Kr = AX[2].leftCols(m), Ki = AX[2].rightCols(m);
         Eigen::MatrixXd Rr(Kr.rows(), m), Ri(Kr.rows(), m);
         for (int j = 0; j < m; ++j)
           {
@@ -437,7 +515,7 @@ namespace squeal
     {
       const auto          start = std::chrono::steady_clock::now();
       const PointMatrices A(model, point);
-      const PETScMatrix  &M = A.M, &K_s = A.K_s;
+      const PETScMatrix  &M = A.M, &K = A.K, &K_s = A.K_s;
       const double        w_t    = 2. * numbers::PI * band.target_frequency;
       const auto          square = [](const double f) {
         return std::pow(2. * numbers::PI * f, 2);
@@ -477,12 +555,14 @@ namespace squeal
       r.symmetric_in_band  = counts[2] - counts[1];
       r.symmetric_in_basis = counts[3];
       // the memory the first full solve of a run will need, before it
-      // needs it: the LDL^T of K_s - sigma M and the subspace V, M V, C V,
-      // K V of m vectors, 43 bytes per DoF and vector (the four blocks and
-      // the 1.35x of growing them, measured on the coarse passenger-car
-      // brake); m = 3 k (the k modes and their 2 k static corrections) plus
-      // 6 per mode in the band for the refinement (measured: 2.8 on the
-      // TriboBrake, 10.6 on the brake); m = k without friction and damping
+      // needs it: the LDL^T of K_s - sigma M and the subspace of m vectors,
+      // per DoF and vector 43 bytes with stored products (V, M V, C V, K V
+      // and the 1.35x of growing them) and 22 bytes with recomputed ones
+      // (V, the working blocks, C^T and K^T), measured on the coarse
+      // passenger-car brake; m = 3 k (the k modes and their 2 k static
+      // corrections) plus 6 per mode in the band for the refinement
+      // (measured: 2.8 on the TriboBrake, 10.6 on the brake); m = k
+      // without friction and damping
       static bool estimated = false;
       if (!estimated)
         {
@@ -495,10 +575,11 @@ namespace squeal
             pcout.is_active() ? &pcout.get_stream() : nullptr,
             M.m(),
             factorisation_bytes(K_s.n_nonzero_elements(), M.m(), true) +
-              43. * n_dofs * m,
+              (band.store_products ? 43. : 22.) * n_dofs * m,
             "the full solver's LDL^T and its subspace of about " +
               std::to_string(int(m)) +
-              " vectors with their M, C and K products");
+              (band.store_products ? " vectors with their M, C and K products" :
+                                     " vectors (products recomputed)"));
         }
 
       const double                    t_count = seconds_since(start);
@@ -539,7 +620,7 @@ namespace squeal
       modes.shrink_to_fit();
       if (slepc)
         slepc->release_basis();
-      Subspace s(A);
+      Subspace s(A, band.store_products);
       s.append(std::move(Phi), true);
       s.fix_modal_damping(K_s, model.modal);
       // static corrections of the damping and the friction forces
@@ -549,7 +630,14 @@ namespace squeal
         {
           const int       m = s.V.cols();
           Eigen::MatrixXd forces(n, 2 * m);
-          forces << s.WC, s.WK - s.WM * omega2.asDiagonal();
+          if (s.stored)
+            forces << s.WC, s.WK - s.WM * omega2.asDiagonal();
+          else
+            {
+              forces.leftCols(m)  = s.damping_times(s.V);
+              forces.rightCols(m) = multiply(K, s.V);
+              forces.rightCols(m) -= multiply(M, s.V) * omega2.asDiagonal();
+            }
           Eigen::MatrixXd corrections =
             internal::solve_block(factorised, K_s, forces);
           forces.resize(0, 0);
@@ -625,7 +713,7 @@ namespace squeal
       const IndexSet      owned = M.locally_owned_range_indices();
       const int           n     = owned.n_elements();
       IterateReport       r;
-      Subspace            s(AP);
+      Subspace            s(AP, band.store_products);
       // shifts at the geometric centres of sub-bands at most an octave wide
       const double       f_lo = std::max(band.f_min, 1.), f_hi = band.f_max;
       const unsigned int n_shifts =
@@ -704,7 +792,7 @@ namespace squeal
 
     std::vector<RefinedPair>
     PairRefiner::refine(const parameters::ScalarPoint           &point,
-                        const Projection                        &start,
+                        Projection                               start,
                         const std::vector<std::complex<double>> &lambda,
                         const std::vector<Eigen::VectorXcd>     &q)
     {
@@ -730,7 +818,7 @@ namespace squeal
         }
       model.damping(point, C);
       model.stiffness(point, K);
-      Subspace                             s(M, C, K, start);
+      Subspace                             s(M, C, K, std::move(start));
       const unsigned int                   n_pairs = lambda.size();
       std::vector<internal::ProjectedPair> pairs(n_pairs);
       for (unsigned int j = 0; j < n_pairs; ++j)

@@ -357,6 +357,19 @@ namespace squeal
                         "deal.II), both shift-and-invert with a MUMPS "
                         "Cholesky factorisation; the results agree "
                         "(cea_tribobrake_coarse).");
+      prm.declare_entry(
+        "Subspace products",
+        subspace_products,
+        Patterns::Selection("stored|recomputed"),
+        "The full solver's subspace V (n x r, r up to a few thousand "
+        "vectors): stored keeps its products M V, C V, K V (four n x r "
+        "blocks; a Ritz pair's residual is combined from them); recomputed "
+        "keeps V only (half the peak memory on the brake; the products of "
+        "each new block and of the Ritz vectors are formed when needed). "
+        "Its residuals are those of the returned vectors as rounded to "
+        "double precision, whose floor is near 1e-10 for the lowest modes "
+        "of a large model: use it with a Residual tolerance of a few "
+        "1e-10 (doc/cea.md).");
       prm.declare_entry("Tracking MAC threshold",
                         str(tracking_mac_threshold),
                         Patterns::Double(0., 1.),
@@ -449,6 +462,7 @@ namespace squeal
       certification_margin     = prm.get_double("Certification margin");
       tracking_mac_threshold   = prm.get_double("Tracking MAC threshold");
       symmetric_solver         = prm.get("Symmetric eigensolver");
+      subspace_products        = prm.get("Subspace products");
       reduced_samples          = prm.get_integer("Reduced samples");
       reduced_band_factor      = prm.get_double("Reduced band factor");
       reduced_enrichment       = prm.get_bool("Reduced enrichment");

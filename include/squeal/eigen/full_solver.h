@@ -31,9 +31,13 @@
  *    band whose relative residual
  *    ||r|| / (|lambda|^2 ||M x|| + |lambda| ||C x|| + ||K x||) exceeds the
  *    tolerance is preconditioned by P^-1 and added to the subspace, until
- *    every pair is below it or the round limit is reached. The residuals
- *    come from the stored products M V, C V, K V of the subspace V, so a
- *    round's sparse work is the new block's products only.
+ *    every pair is below it or the round limit is reached. With
+ *    BandOptions::store_products (the default) the residuals come from the
+ *    stored products M V, C V, K V of the subspace V, so a round's sparse
+ *    work is the new block's products only; without, only V is kept (a
+ *    quarter of the memory) and the Ritz vectors' products are formed
+ *    directly, whose rounding floor (up to 1e-10 relative for the lowest
+ *    modes of the brakes measured) can cost more rounds.
  *
  * At an undamped frictionless point (every damping coefficient 0, no modal
  * damping, no friction part: C = 0 and K = K_s) the eigenvalues are
@@ -192,13 +196,15 @@ namespace squeal
 
       /**
        * Refines the pairs (@p lambda [1/s], @p q: coordinates in the basis
-       * of @p start, one per pair) at the point @p p.
+       * of @p start, one per pair) at the point @p p. The subspace starts
+       * as @p start and its stored products, taken over without a copy
+       * (pass ReducedModel::projection() directly or std::move it).
        * @return one RefinedPair per input pair, in their order
        * @throws std::runtime_error if a factorisation fails.
        */
       std::vector<RefinedPair>
       refine(const parameters::ScalarPoint           &p,
-             const Projection                        &start,
+             Projection                               start,
              const std::vector<std::complex<double>> &lambda,
              const std::vector<Eigen::VectorXcd>     &q);
 

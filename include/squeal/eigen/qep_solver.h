@@ -53,6 +53,10 @@ namespace squeal
       /// deal.II's PArpackSolver), both shift-and-invert with MUMPS
       /// Cholesky.
       std::string symmetric_solver = "slepc";
+      /// The full solver keeps the products M V, C V, K V of its subspace
+      /// V (true: four n x r blocks, no sparse product to test a Ritz
+      /// pair) or forms them when needed (false: one block).
+      bool store_products = true;
     };
 
     /**

@@ -268,6 +268,8 @@ namespace squeal
       double tracking_mac_threshold = 0.3;
       /// the full solver's symmetric eigensolver: `slepc` or `arpack`
       std::string symmetric_solver = "slepc";
+      /// the full solver's subspace products: `stored` or `recomputed`
+      std::string subspace_products = "stored";
       /// Sample values per swept structural parameter for the reduced basis.
       unsigned int reduced_samples = 3;
       double reduced_band_factor   = 1.25; ///< see benchmarks/speed_vs_error
