@@ -582,9 +582,10 @@ namespace squeal
             << " 1/s of the stability threshold at " << order.size()
             << " points, refined on the full model to residual "
             << es.residual_tolerance << std::endl;
-      eigen::PairRefiner refiner(parts, band_options());
-      double             largest = 0., largest_move = 0.;
-      unsigned int       rounds = 0;
+      const eigen::BandOptions refiner_band = band_options();
+      eigen::PairRefiner       refiner(parts, refiner_band);
+      double                   largest = 0., largest_move = 0.;
+      unsigned int             rounds = 0;
       for (const auto &[key, p] : order)
         {
           Point                            &pt = points[p];
@@ -599,7 +600,11 @@ namespace squeal
                 q.push_back(pt.q[m]);
               }
           const auto refined =
-            refiner.refine(pt.values, reduced.projection(pt.values), lambda, q);
+            refiner.refine(pt.values,
+                           reduced.projection(pt.values,
+                                              refiner_band.store_products),
+                           lambda,
+                           q);
           for (unsigned int a = 0; a < index.size(); ++a)
             {
               const unsigned int m = index[a];

@@ -121,16 +121,17 @@ namespace squeal
           , stored(stored)
         {}
 
-        // the subspace of a reduced basis with its stored products
+        // the subspace of a reduced basis (with its products if stored)
         Subspace(const PETScMatrix &M,
                  const PETScMatrix &C,
                  const PETScMatrix &K,
-                 Projection       &&start)
+                 Projection       &&start,
+                 const bool         stored)
           : M(M)
           , C(C)
           , K(K)
           , comm(M.get_mpi_communicator())
-          , stored(true)
+          , stored(stored)
           , V(std::move(start.V))
           , WM(std::move(start.MV))
           , WC(std::move(start.CV))
@@ -818,8 +819,12 @@ namespace squeal
         }
       model.damping(point, C);
       model.stiffness(point, K);
-      Subspace                             s(M, C, K, std::move(start));
-      const unsigned int                   n_pairs = lambda.size();
+      if (band.store_products && start.MV.cols() != start.V.cols())
+        throw std::logic_error(
+          "PairRefiner::refine: the projection has no products "
+          "(ReducedModel::projection(p, true) with stored products)");
+      Subspace           s(M, C, K, std::move(start), band.store_products);
+      const unsigned int n_pairs = lambda.size();
       std::vector<internal::ProjectedPair> pairs(n_pairs);
       for (unsigned int j = 0; j < n_pairs; ++j)
         pairs[j] = {lambda[j], q[j]};

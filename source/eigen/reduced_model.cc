@@ -353,7 +353,8 @@ namespace squeal
     }
 
     Projection
-    ReducedModel::projection(const parameters::ScalarPoint &p) const
+    ReducedModel::projection(const parameters::ScalarPoint &p,
+                             const bool                     with_products) const
     {
       require_products(released);
       const auto         c       = parts.coefficients(p);
@@ -371,10 +372,13 @@ namespace squeal
         return sum;
       };
       Projection result;
-      result.V  = V;
-      result.MV = expand(c.mass);
-      result.CV = expand(c.damping);
-      result.KV = expand(c.stiffness);
+      result.V = V;
+      if (with_products)
+        {
+          result.MV = expand(c.mass);
+          result.CV = expand(c.damping);
+          result.KV = expand(c.stiffness);
+        }
       result.Mr = combine(c.mass);
       result.Cr = combine(c.damping);
       result.Kr = combine(c.stiffness);
@@ -384,9 +388,11 @@ namespace squeal
             internal::subspace_modal_damping(result.Mr,
                                              combine(c.symmetric_stiffness),
                                              parts.modal);
-          result.modal_U = result.MV * m.Psi;
+          result.modal_U =
+            with_products ? result.MV * m.Psi : expand(c.mass) * m.Psi;
           result.modal_d = m.d;
-          result.CV += result.MV * m.B;
+          if (with_products)
+            result.CV += result.MV * m.B;
           result.Cr += result.Mr * m.B;
         }
       return result;

@@ -175,9 +175,10 @@ namespace squeal
      * (or BandOptions::max_rounds are spent).
      *
      * Method (Davidson with a fixed preconditioner, as in solve_full()'s
-     * refinement): the subspace starts as V with the stored products of
-     * ReducedModel::projection(); every round adds P^-1 [Re r, Im r] for
-     * each pair's residual r, P = K_s(p) + (2 pi f_t)^2 M(p) (MUMPS
+     * refinement): the subspace starts as V of
+     * ReducedModel::projection() (with its products unless
+     * BandOptions::store_products is false); every round adds P^-1 [Re r, Im r]
+     * for each pair's residual r, P = K_s(p) + (2 pi f_t)^2 M(p) (MUMPS
      * Cholesky, factorised once for all points with the same M and K_s:
      * a sweep of the friction coefficient shares it), and each pair
      * follows its eigenvalue of the projected problem by nonlinear inverse
@@ -197,8 +198,11 @@ namespace squeal
       /**
        * Refines the pairs (@p lambda [1/s], @p q: coordinates in the basis
        * of @p start, one per pair) at the point @p p. The subspace starts
-       * as @p start and its stored products, taken over without a copy
-       * (pass ReducedModel::projection() directly or std::move it).
+       * as @p start (and its products with BandOptions::store_products),
+       * taken over without a copy (pass ReducedModel::projection()
+       * directly or std::move it).
+       * @throws std::logic_error if products are to be stored and
+       * @p start has none.
        * @return one RefinedPair per input pair, in their order
        * @throws std::runtime_error if a factorisation fails.
        */

@@ -51,7 +51,8 @@ namespace squeal
     /**
      * The reduced basis at one parameter point: V (locally owned rows x r,
      * M-orthonormal at the reference point), the products M(p) V, C(p) V,
-     * K(p) V (local rows) and the projected r x r matrices V^T M(p) V,
+     * K(p) V (local rows; empty when not asked for) and the projected r x r
+     * matrices V^T M(p) V,
      * V^T C(p) V, V^T K(p) V (every rank holds them whole).
      */
     struct Projection
@@ -109,11 +110,14 @@ namespace squeal
 
       /**
        * The basis and its products at the point @p p (no sparse work: the
-       * stored products of every part are combined).
+       * stored products of every part are combined); without
+       * @p with_products, Projection::MV, CV and KV are left empty (three
+       * n x r blocks less).
        * @throws std::runtime_error if @p p lacks a parameter of the model.
        */
       Projection
-      projection(const parameters::ScalarPoint &p) const;
+      projection(const parameters::ScalarPoint &p,
+                 const bool                     with_products = true) const;
 
       /**
        * Frees the parts' products A_k V and their Gram matrices once no
