@@ -2,8 +2,8 @@
 """Generates a parametric passenger-car front disc brake as a hexahedral mesh
 with named bodies and sets, and the squeal scene that goes with it.
 
-    scripts/make_brake.py [--size coarse|default|fine] [--out DIR]
-                          [--element-size MM] [--help]
+    scripts/make_brake.py [--size coarse|default|fine] [--ventilated]
+                          [--out DIR] [--element-size MM] [--help]
 
 writes DIR/brake.msh (Gmsh 4.1, written through Gmsh's Python API from
 Debian's python3-gmsh, in mm) and DIR/brake_scene.prm (subsection Scene of a
@@ -14,7 +14,9 @@ The brake (z is the hub axis, the caliper sits at +x; all lengths in mm):
 - disc: a solid grey-iron friction ring (outer radius 150, 25 thick, faces
   z = 0 inboard and z = 25 outboard) on a hat (wall at radius 80-86, hub
   flange z = 39-45, bore radius 33), held at its hub face (flange top,
-  radius 33-60: the wheel bolts clamp it);
+  radius 33-60: the wheel bolts clamp it); with --ventilated, two 9 mm
+  cheeks (faces z = 0 and 28) joined by 36 radial vanes, the hat on the
+  outboard cheek (DIR defaults to prm/brake_<size>_ventilated);
 - two pads: friction material 10 thick (radius 100-148, 100 mm long at the
   mean radius), bonded to 5 mm steel backplates with ears that reach the
   anchor bracket's abutments;
@@ -49,6 +51,15 @@ import sys
 # (Breuer & Bill, Brake Technology Handbook, SAE 2008, ch. 7-8).
 DISC_R_OUT = 150.0      # friction ring outer radius
 DISC_THICKNESS = 25.0   # friction ring (solid disc), faces z = 0 and 25
+# The ventilated option (--ventilated): two 9 mm cheeks joined by 36
+# straight radial vanes, 28 mm overall, the hat on the outboard cheek only
+# (the channels open at the ring's inner radius); vented front discs of
+# this size are 22-32 mm thick with 6-10 mm cheeks and 30-48 vanes (Breuer
+# & Bill, ch. 7; Limpert, Brake Design and Safety, SAE 2011, ch. 4).
+VENTED_THICKNESS = 28.0
+CHEEK_THICKNESS = 9.0
+VANES = 36
+VANE_ANGLE = 4.0        # degrees: 10.5 mm wide at r = 150, 6 mm at r = 86
 HAT_R_IN, HAT_R_OUT = 80.0, 86.0   # hat wall
 HUB_R_BORE = 33.0       # centre bore
 HUB_R_BOLT = 60.0       # the clamped hub face: bore to beyond the bolt circle
@@ -175,20 +186,41 @@ def between(lattice, a, b):
     return [x for x in lattice if a - 1e-9 <= x <= b + 1e-9]
 
 
-def build(h):
+def build(h, ventilated=False):
     m = Mesh()
     # --- disc: its (r, z) profile turned about z ------------------------
-    n_theta = 4 * max(3, int(round(2 * math.pi * DISC_R_OUT / h / 4)))
-    ts = [2 * math.pi * j / n_theta for j in range(n_theta + 1)]
+    thickness = VENTED_THICKNESS if ventilated else DISC_THICKNESS
+    if ventilated:
+        # theta breaks at both edges of every vane
+        pitch, width = 2 * math.pi / VANES, math.radians(VANE_ANGLE)
+        ts = breaks([a for k in range(VANES)
+                     for a in (k * pitch, k * pitch + width)] +
+                    [2 * math.pi], h / DISC_R_OUT)
+        cheeks = [CHEEK_THICKNESS, thickness - CHEEK_THICKNESS]
+    else:
+        n_theta = 4 * max(3, int(round(2 * math.pi * DISC_R_OUT / h / 4)))
+        ts = [2 * math.pi * j / n_theta for j in range(n_theta + 1)]
+        cheeks = []
     r_lat = breaks([HUB_R_BORE, HUB_R_BOLT, HAT_R_IN, HAT_R_OUT, DISC_R_OUT],
                    h)
-    z_lat = breaks([0.0, DISC_THICKNESS, HAT_TOP - FLANGE_THICKNESS,
-                    HAT_TOP], h)
+    z_lat = breaks([0.0] + cheeks + [thickness, HAT_TOP - FLANGE_THICKNESS,
+                                     HAT_TOP], h)
     ring_r = between(r_lat, HAT_R_OUT, DISC_R_OUT)
-    m.box("disc", "disc", ring_r, ts, between(z_lat, 0, DISC_THICKNESS),
-          {"disc inboard face": "z0", "disc outboard face": "z1"})
+    if ventilated:
+        m.box("disc", "disc", ring_r, ts, between(z_lat, 0, cheeks[0]),
+              {"disc inboard face": "z0"})
+        for k in range(VANES):
+            m.box("disc", "disc", ring_r,
+                  between(ts, k * pitch, k * pitch + width),
+                  between(z_lat, cheeks[0], cheeks[1]))
+        m.box("disc", "disc", ring_r, ts, between(z_lat, cheeks[1],
+                                                  thickness),
+              {"disc outboard face": "z1"})
+    else:
+        m.box("disc", "disc", ring_r, ts, between(z_lat, 0, thickness),
+              {"disc inboard face": "z0", "disc outboard face": "z1"})
     m.box("disc", "disc", between(r_lat, HAT_R_IN, HAT_R_OUT), ts,
-          between(z_lat, 0, HAT_TOP))
+          between(z_lat, cheeks[1] if ventilated else 0, HAT_TOP))
     m.box("disc", "disc", between(r_lat, HUB_R_BORE, HUB_R_BOLT), ts,
           between(z_lat, HAT_TOP - FLANGE_THICKNESS, HAT_TOP),
           {"disc hub": "z1"})
@@ -209,12 +241,12 @@ def build(h):
     z_in_bp = -PAD_THICKNESS - BACKPLATE_THICKNESS
     z_piston = z_in_bp - PISTON_LENGTH
     z_housing = z_piston - HOUSING_THICKNESS
-    z_out_pad = DISC_THICKNESS + PAD_THICKNESS
+    z_out_pad = thickness + PAD_THICKNESS
     z_out_bp = z_out_pad + BACKPLATE_THICKNESS
     z_finger = z_out_bp + FINGER_THICKNESS
     z_lug = z_in_bp - BRACKET_LUG
     zc_lat = breaks(sorted({z_housing, z_piston, z_lug, z_in_bp,
-                            -PAD_THICKNESS, 0.0, DISC_THICKNESS, z_out_pad,
+                            -PAD_THICKNESS, 0.0, thickness, z_out_pad,
                             z_out_bp, z_finger}), h)
     R, T, Z = (lambda a, b: between(rc_lat, a, b),
                lambda a, b: between(t_lat, a, b),
@@ -230,7 +262,7 @@ def build(h):
           {"piston back": "z0"})
     # outer pad and caliper (group "caliper": the fingers hold the pad)
     m.box("friction material", "caliper", pad_r, pad_t,
-          Z(DISC_THICKNESS, z_out_pad), {"outer pad face": "z0"})
+          Z(thickness, z_out_pad), {"outer pad face": "z0"})
     m.box("backplates", "caliper", pad_r, T(-a_ear, a_ear),
           Z(z_out_pad, z_out_bp))
     m.box("caliper", "caliper", R(PAD_R_IN, BRIDGE_R_OUT), pad_t,
@@ -383,16 +415,20 @@ def main():
     parser.add_argument("--size", choices=sorted(SIZES), default="default")
     parser.add_argument("--element-size", type=float,
                         help="element size [mm] (overrides --size)")
-    parser.add_argument("--out", help="folder (default prm/brake_<size>)")
+    parser.add_argument("--ventilated", action="store_true",
+                        help="a ventilated disc (two cheeks and 36 vanes)")
+    parser.add_argument("--out", help="folder (default prm/brake_<size>, "
+                        "prm/brake_<size>_ventilated with --ventilated)")
     args = parser.parse_args()
     h = args.element_size if args.element_size else SIZES[args.size]
     if not (h > 0.5):
         sys.exit("make_brake.py: --element-size must be > 0.5 mm")
     here = os.path.dirname(os.path.abspath(__file__))
     out = args.out or os.path.normpath(
-        os.path.join(here, "..", "prm", f"brake_{args.size}"))
+        os.path.join(here, "..", "prm", f"brake_{args.size}" +
+                     ("_ventilated" if args.ventilated else "")))
     os.makedirs(out, exist_ok=True)
-    m, g = build(h)
+    m, g = build(h, args.ventilated)
     write_msh(m, os.path.join(out, "brake.msh"))
     write_scene(g, os.path.join(out, "brake_scene.prm"), "brake.msh")
     print(f"make_brake.py: {out}/brake.msh and brake_scene.prm: "

@@ -1,0 +1,148 @@
+"""The ventilated disc of scripts/make_brake.py --ventilated (coarse size,
+degree 1):
+- the disc's volume, summed over the hexahedra of its physical group as
+  Gmsh reads the file, equals the drawing's: two 9 mm cheeks and 36 vanes
+  of 4 degrees (10 mm high) on the ring r = 86-150, the hat wall r = 80-86
+  from the outboard cheek (z = 19) to the flange top (z = 45) and the flange
+  r = 33-80, 6 thick (2e-3: the cells' straight chords of the circles);
+  a solid ring would be 30 % more;
+- the preload (steady sliding, mu = 0.3): the force pair F on the piston
+  and the caliper's bore presses both pads on the cheeks, so the normal
+  force is 2 F (1e-3: the soft axial springs) and friction mu times it;
+- the preloaded CEA at one point (full solver, 500-6000 Hz; the solver
+  itself fails unless it finds every symmetric mode that inertia counts):
+  at least 20 modes in the band, every residual below 1e-10.
+Usage: check_brake_ventilated.py SQUEAL WORK_DIR"""
+import csv
+import math
+import os
+import subprocess
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, here)
+from checks import check, finish, run_squeal  # noqa: E402
+
+squeal, work = sys.argv[1], sys.argv[2]
+os.makedirs(work, exist_ok=True)
+os.chdir(work)
+
+script = os.path.join(here, "..", "..", "scripts", "make_brake.py")
+r = subprocess.run([sys.executable, script, "--size", "coarse",
+                    "--ventilated", "--out", "brake"], capture_output=True,
+                   text=True)
+check("make_brake.py --ventilated writes the brake", r.returncode == 0 and
+      os.path.isfile("brake/brake.msh"), r.stdout + r.stderr, show=True)
+if r.returncode != 0:
+    finish()
+
+
+def tetrahedron(a, b, c, d):
+    u = [b[i] - a[i] for i in range(3)]
+    v = [c[i] - a[i] for i in range(3)]
+    w = [d[i] - a[i] for i in range(3)]
+    return abs(u[0] * (v[1] * w[2] - v[2] * w[1]) -
+               u[1] * (v[0] * w[2] - v[2] * w[0]) +
+               u[2] * (v[0] * w[1] - v[1] * w[0])) / 6
+
+
+def hexahedron(p):
+    """Volume of a hexahedron with planar faces (Gmsh's node order: bottom
+    face 0-3, top face 4-7) as six tetrahedra about the diagonal 0-6."""
+    return sum(tetrahedron(p[0], p[6], p[a], p[b]) for a, b in
+               ((1, 2), (2, 3), (3, 7), (7, 4), (4, 5), (5, 1)))
+
+
+import gmsh  # noqa: E402  (Debian's python3-gmsh, as make_brake.py)
+gmsh.initialize([], False)
+gmsh.option.setNumber("General.Terminal", 0)
+gmsh.open("brake/brake.msh")
+volume = 0.
+n_cells = 0
+for dim, tag in gmsh.model.getPhysicalGroups(3):
+    if gmsh.model.getPhysicalName(dim, tag) != "disc":
+        continue
+    for entity in gmsh.model.getEntitiesForPhysicalGroup(dim, tag):
+        _, _, nodes = gmsh.model.mesh.getElements(dim, entity)
+        for cell in range(len(nodes[0]) // 8):
+            corners = [gmsh.model.mesh.getNode(n)[0]
+                       for n in nodes[0][8 * cell:8 * cell + 8]]
+            volume += hexahedron(corners)
+            n_cells += 1
+gmsh.finalize()
+ring = math.pi * (150.0 ** 2 - 86.0 ** 2)
+vanes = 36 * math.radians(4.0) / (2 * math.pi)
+drawing = (ring * (2 * 9.0 + vanes * 10.0) +
+           math.pi * (86.0 ** 2 - 80.0 ** 2) * (45.0 - 19.0) +
+           math.pi * (80.0 ** 2 - 33.0 ** 2) * 6.0)
+check("disc volume = the drawing's (two cheeks, 36 vanes, hat, flange)",
+      n_cells > 0 and abs(volume - drawing) < 2e-3 * drawing,
+      f"{n_cells} hexahedra, {volume:.6g} mm^3 against {drawing:.6g} mm^3 "
+      f"(solid ring: {drawing + ring * (1 - vanes) * 10.0:.6g})", show=True)
+
+force = 2e6 * math.pi * 0.054 ** 2 / 4   # the script's piston force [N]
+with open("base.prm", "w") as f:
+    f.write("""INCLUDE brake/brake_scene.prm
+subsection Mesh
+  set Finite element degree = 1
+end
+subsection Interface
+  set Normal stiffness = 1e13
+  set Friction coefficient = 0.3
+end
+subsection Preload
+  set Friction = steady sliding
+end
+subsection Damping
+  set Alpha = 0.02
+  set Beta = 1e-7
+end
+""")
+out, _ = run_squeal(squeal, "base.prm", "preload",
+                    "subsection Scene\n  set Analysis = preload\nend\n")
+summary = {}
+with open(os.path.join(out, "preload_summary.txt")) as f:
+    for row in f:
+        key, _, value = row.partition(" ")
+        try:
+            summary[key] = float(value)
+        except ValueError:
+            summary[key] = value.strip()
+fn = summary.get("normal_force_N", 0.)
+ft = summary.get("friction_force_N", 0.)
+check("both pads pressed on the cheeks: normal force 2 F",
+      abs(fn - 2 * force) < 1e-3 * 2 * force,
+      f"normal force {fn:.6g} N, 2 F = {2 * force:.6g} N", show=True)
+check("every node slides: friction = mu x normal",
+      fn > 0 and abs(ft - 0.3 * fn) < 1e-6 * fn,
+      f"friction {ft:.10g} N, 0.3 x normal {0.3 * fn:.10g} N", show=True)
+
+out, _ = run_squeal(squeal, "base.prm", "cea", """subsection Scene
+  set Analysis = preloaded cea
+end
+subsection Eigensolver
+  set Method = full
+  set Minimum frequency = 500
+  set Maximum frequency = 6000
+end
+subsection Sweep
+  set First parameter = contact.mu
+  set First values = 0.5
+  set Second parameter = friction material.E
+  set Second values = 8e9
+end
+subsection Output
+  set Mode shapes = none
+end
+""")
+with open(os.path.join(out, "full_solver.csv")) as f:
+    row = next(csv.DictReader(f))
+with open(os.path.join(out, "eigenvalues.csv")) as f:
+    n_eigen = len(list(csv.DictReader(f)))
+modes, counted = int(row["modes"]), int(row["symmetric_in_band"])
+residual = float(row["largest_residual"])
+check("CEA: the band's modes found, residuals below 1e-10",
+      modes == n_eigen and modes >= 20 and residual <= 1e-10,
+      f"{modes} modes, {counted} counted by inertia without friction, "
+      f"largest residual {residual:.3g}", show=True)
+finish()
