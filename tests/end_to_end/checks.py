@@ -130,3 +130,50 @@ def memory_estimate_holds(stdout, factor=2.):
         return False, "no 'Memory: ... estimated peak' or 'Peak memory' line"
     ok = use <= estimate and peak / factor <= estimate <= peak * factor
     return ok, f"in use {use} MB, estimated peak {estimate} MB, peak {peak} MB"
+
+
+def preload_summary(folder):
+    """The key value lines of FOLDER/preload_summary.txt as a dict (numbers
+    as floats, words as strings)."""
+    summary = {}
+    with open(os.path.join(folder, "preload_summary.txt")) as f:
+        for row in f:
+            key, _, value = row.partition(" ")
+            try:
+                summary[key] = float(value)
+            except ValueError:  # a word: normal_contact_law
+                summary[key] = value.strip()
+    return summary
+
+
+def check_brake_force_loop(folder, force, mu, what):
+    """The preload of make_brake.py's brake in FOLDER: the force pair FORCE
+    [N] on the piston and the caliper's bore presses both pads, so the
+    normal force is 2 FORCE (1e-3: the soft axial springs carry the rest),
+    and every node slides: friction MU times it (1e-6)."""
+    summary = preload_summary(folder)
+    fn = summary.get("normal_force_N", 0.)
+    ft = summary.get("friction_force_N", 0.)
+    check(f"{what}: normal force 2 F",
+          abs(fn - 2 * force) < 1e-3 * 2 * force,
+          f"normal force {fn:.6g} N, 2 F = {2 * force:.6g} N", show=True)
+    check(f"{what}: every node slides, friction = mu x normal",
+          fn > 0 and abs(ft - mu * fn) < 1e-6 * fn,
+          f"friction {ft:.10g} N, {mu} x normal {mu * fn:.10g} N", show=True)
+
+
+def make_brake(*options):
+    """Runs scripts/make_brake.py --size coarse OPTIONS --out brake (in the
+    current folder); stops the check unless it writes brake/brake.msh and
+    brake/brake_scene.prm."""
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
+                          "..", "scripts", "make_brake.py")
+    r = subprocess.run([sys.executable, script, "--size", "coarse",
+                        *options, "--out", "brake"], capture_output=True,
+                       text=True)
+    ok = r.returncode == 0 and os.path.isfile("brake/brake.msh") and \
+        os.path.isfile("brake/brake_scene.prm")
+    check(" ".join(("make_brake.py",) + options) + " writes the brake", ok,
+          r.stdout + r.stderr, show=True)
+    if not ok:
+        finish()
