@@ -34,6 +34,16 @@ namespace squeal
         check_petsc(ierr, "full solver", what);
       }
 
+      // MODES in ascending order of omega^2
+      inline std::vector<UndampedMode>
+      sorted_by_omega2(std::vector<UndampedMode> modes)
+      {
+        std::sort(modes.begin(), modes.end(), [](const auto &a, const auto &b) {
+          return a.omega2.real() < b.omega2.real();
+        });
+        return modes;
+      }
+
       // The symmetric modes up to the basis frequency, by shift-and-invert
       // Krylov-Schur with a Cholesky factorisation that stays alive as the
       // preconditioner P^-1 of the refinement.
@@ -109,12 +119,7 @@ namespace squeal
               if (modes.size() == wanted)
                 break;
             }
-          std::sort(modes.begin(),
-                    modes.end(),
-                    [](const auto &a, const auto &b) {
-                      return a.omega2.real() < b.omega2.real();
-                    });
-          return modes;
+          return sorted_by_omega2(std::move(modes));
         }
 
         // the factorised K - sigma M
@@ -199,12 +204,7 @@ namespace squeal
               if (modes.size() == wanted)
                 break;
             }
-          std::sort(modes.begin(),
-                    modes.end(),
-                    [](const auto &a, const auto &b) {
-                      return a.omega2.real() < b.omega2.real();
-                    });
-          return modes;
+          return sorted_by_omega2(std::move(modes));
         }
 
         void *
