@@ -11,10 +11,12 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # libopenblas0-pthread: Debian's optimised BLAS/LAPACK replaces the reference
 # ones behind libblas.so.3 (MUMPS factorisations, SLEPc orthogonalisation and
 # the dense eigenproblems of the reduced sweep run several times faster).
+# calculix-ccx: CalculiX 2.20, the peer code of end_to_end/calculix_two_blocks
+# and of the side-by-side benchmarks.
 packages=(libdeal.ii-dev libeigen3-dev numdiff python3-matplotlib python3-numpy
           openmpi-bin libopenmpi-dev cmake make g++ libopenblas0-pthread
           libopencv-dev libopencv-contrib-dev libfftw3-dev libgmsh-dev
-          libvtk9-dev zlib1g-dev clang-format python3-gmsh)
+          libvtk9-dev zlib1g-dev clang-format python3-gmsh calculix-ccx)
 build_it=1
 with_paraview=0
 for arg in "$@"; do
