@@ -190,6 +190,7 @@ namespace squeal
         const QGaussSimplex<2>                                     &tri,
         const double                                 search_distance,
         std::vector<std::map<unsigned int, double>> &M,
+        std::vector<double>                         &own_psi,
         MortarOperators                             &op)
       {
         const unsigned int n_f = sf.nodes.size();
@@ -207,6 +208,26 @@ namespace squeal
         for (const Point<3> &x : sf.outline)
           own.push_back(to_plane(x));
         own = counter_clockwise(own);
+        // int psi_j over the whole face as the segments integrate it (the
+        // plane of the face's corners): the measure a fully covered node's
+        // row of M sums to, also on a curved face, whose plane differs from
+        // the face D_j is integrated on
+        for (const auto &[x2, w] : polygon_quadrature(own, tri))
+          {
+            const Point<3> us =
+              unit_on_face(mapping,
+                           sf.cell,
+                           sf.face_no,
+                           sf.centre + x2[0] * e1 + x2[1] * e2);
+            for (unsigned int a2 = 0; a2 < n_f; ++a2)
+              {
+                double psi = 0.;
+                for (unsigned int b2 = 0; b2 < n_f; ++b2)
+                  psi +=
+                    A(a2, b2) * scalar.shape_value(sf.nodes[b2].second, us);
+                own_psi[sf.nodes[a2].first] += w * psi;
+              }
+          }
 
         // master faces up to one face size behind the slave face count too
         // (build_mortar_operators() asks the R-tree as far)
@@ -265,6 +286,7 @@ namespace squeal
       // the initial weighted gaps.
       void
       finish_nodes(const std::vector<std::map<unsigned int, double>> &M,
+                   const std::vector<double>                         &own_psi,
                    const double     search_distance,
                    MortarOperators &op)
       {
@@ -290,14 +312,17 @@ namespace squeal
               }
             // A node only partly over the master (at the edge of the reach)
             // has no consistent weighted gap: it takes no part in contact.
-            if (row < (1. - 1e-6) * op.D[j])
+            if (row < (1. - 1e-6) * own_psi[j])
               {
                 op.gap0[j] = inf;
                 continue;
               }
-            Tensor<1, 3> d = op.D[j] * op.slave_points[j];
+            // sum_l M_jl (x_j - x_l): independent of where the origin is, also
+            // where row differs from D_j (a curved slave face: D_j is
+            // integrated on the face, M on the plane of its corners)
+            Tensor<1, 3> d;
             for (const auto &[l, m] : op.M[j])
-              d -= m * op.master_points[l];
+              d += m * (op.slave_points[j] - op.master_points[l]);
             op.gap0[j] = -(d * nj);
             if (op.gap0[j] < -search_distance * op.D[j])
               throw std::runtime_error(
@@ -375,6 +400,7 @@ namespace squeal
       op.M.assign(n_s, {});
       op.normals.assign(n_s, Tensor<1, 3>());
       std::vector<std::map<unsigned int, double>> M(n_s);
+      std::vector<double>                         own_psi(n_s, 0.);
       std::vector<Eigen::Triplet<double>>         mass;
 
       const FiniteElement<3> &fe     = dofs.get_fe();
@@ -424,6 +450,7 @@ namespace squeal
                                                tri,
                                                search_distance,
                                                M,
+                                               own_psi,
                                                op);
         }
       if (faces_in_reach == 0)
@@ -445,7 +472,7 @@ namespace squeal
                      sf.outline[a].distance(sf.outline[(a + 1) % 4]));
       op.slave_mass.resize(n_s, n_s);
       op.slave_mass.setFromTriplets(mass.begin(), mass.end());
-      finish_nodes(M, search_distance, op);
+      finish_nodes(M, own_psi, search_distance, op);
       return op;
     }
 
