@@ -209,19 +209,12 @@ def calculix_deck(mu, force, slide, stick_slope, modes=40, bodies=None):
     return "\n".join(lines)
 
 
-def run_calculix(deck, name, work):
-    """Runs `ccx` on DECK as WORK/NAME.inp; the eigenvalues as a sorted list
-    of (frequency [Hz], growth rate Re lambda [1/s]). CalculiX prints each
+def calculix_eigenvalues(dat):
+    """The eigenvalues in CalculiX's .dat file DAT as a sorted list of
+    (frequency [Hz], growth rate Re lambda [1/s]). CalculiX prints each
     eigenvalue as omega = a + i b [rad/s] of exp(i omega t), so
     lambda = i omega and Re lambda = -b; a conjugate pair carries +-b."""
-    with open(os.path.join(work, name + ".inp"), "w") as f:
-        f.write(deck)
-    env = dict(os.environ, OMP_NUM_THREADS="1")
-    r = subprocess.run(["ccx", "-i", name], cwd=work, capture_output=True,
-                       text=True, env=env)
-    if r.returncode != 0 or "Job finished" not in r.stdout:
-        raise RuntimeError(f"{name}: ccx failed\n{r.stdout[-2000:]}")
-    with open(os.path.join(work, name + ".dat")) as f:
+    with open(dat) as f:
         text = f.read()
     table = text.split("E I G E N V A L U E   O U T P U T")[1]
     table = table.split("P A R T I C I P A T I O N")[0]
@@ -232,6 +225,21 @@ def run_calculix(deck, name, work):
             # mode, Re omega [rad/s], Re omega / 2 pi [Hz], Im omega [rad/s]
             values.append((float(cols[2]), -float(cols[3])))
     return sorted(values)
+
+
+def run_calculix(deck, name, work, command=None):
+    """Runs `ccx` (through COMMAND, a function of the argument list and the
+    folder, if given) on DECK as WORK/NAME.inp with one thread; its
+    eigenvalues (calculix_eigenvalues)."""
+    with open(os.path.join(work, name + ".inp"), "w") as f:
+        f.write(deck)
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    run = command or (lambda args, cwd: subprocess.run(
+        args, cwd=cwd, capture_output=True, text=True, env=env))
+    r = run(["ccx", "-i", name], work)
+    if r.returncode != 0 or "Job finished" not in r.stdout:
+        raise RuntimeError(f"{name}: ccx failed\n{r.stdout[-2000:]}")
+    return calculix_eigenvalues(os.path.join(work, name + ".dat"))
 
 
 def run_squeal(squeal, mu, force, slide, name, work):

@@ -56,8 +56,17 @@ def name(s):
     return s.upper().replace(" ", "_")
 
 
-def deck(h, f_max, modes):
-    """The text of the deck at element size h [mm]; (text, DoFs)."""
+def deck(h, f_max, modes, friction=None):
+    """The text of the deck at element size h [mm]; (text, DoFs). With
+    FRICTION (a dict: k_n [N/m^3], mu, stick_slope [N/mm^3], theta [rad],
+    force [N], f_min [Hz]) the pads are in frictional contact with the disc
+    instead of tied, the piston's back and the caliper's bore are held in x
+    and y (the model has no springs), and the deck is
+    CalculiX's brake-squeal practice: a *STATIC step that presses the pads
+    (FORCE on the piston's back and on the caliper's bore, as squeal's force
+    pair) and turns the disc by THETA at its hub so that the pads slip, then
+    a perturbed, unsymmetric *FREQUENCY step of MODES eigenvalues from
+    F_MIN up."""
     mesh, _ = make_brake.build(h)
     coords = [list(c) for c in mesh.coords]
     mid = {}
@@ -98,19 +107,29 @@ def deck(h, f_max, modes):
             ids = [str(n + 1) for n in nodes]
             lines.append(f"{e}, " + ", ".join(ids[:15]) + ",")
             lines.append(", ".join(ids[15:]))
-    for face in [f for pair in TIES for f in pair]:
+    loads = ["piston back", "caliper bore"]
+    faces = [f for pair in TIES for f in pair]
+    if friction:
+        faces += loads
+    for face in faces:
         lines.append(f"*SURFACE, NAME={name(face)}, TYPE=ELEMENT")
         for quad in mesh.faces[face]:
             e, number = face_of[frozenset(quad)]
             lines.append(f"{e}, S{number}")
-    fixed = set()
-    for hold in HOLDS:
+
+    def face_nodes(face):
         nodes = set()
-        for quad in mesh.faces[hold]:
+        for quad in mesh.faces[face]:
             nodes.update(quad)
             nodes.update(midside(quad[i], quad[(i + 1) % 4])
                          for i in range(4))
-        fixed |= nodes
+        return nodes
+
+    fixed = set()
+    for hold in HOLDS + (loads if friction else []):
+        nodes = face_nodes(hold)
+        if hold in HOLDS:
+            fixed |= nodes
         lines.append(f"*NSET, NSET={name(hold)}")
         ordered = sorted(n + 1 for n in nodes)
         for i in range(0, len(ordered), 16):
@@ -119,14 +138,57 @@ def deck(h, f_max, modes):
         lines += [f"*MATERIAL, NAME=M_{name(body)}"] + text
         lines.append(f"*SOLID SECTION, ELSET={name(body)}, "
                      f"MATERIAL=M_{name(body)}")
-    for k, (slave, master) in enumerate(TIES):
-        lines += [f"*TIE, NAME=TIE{k + 1}, POSITION TOLERANCE=0.5",
+    dofs = 3 * (len(coords) - len(fixed))
+    if not friction:
+        for k, (slave, master) in enumerate(TIES):
+            lines += [f"*TIE, NAME=TIE{k + 1}, POSITION TOLERANCE=0.5",
+                      f"{name(slave)}, {name(master)}"]
+        lines += ["*BOUNDARY"] + [f"{name(hold)}, 1, 3" for hold in HOLDS]
+        lines += ["*STEP", "*FREQUENCY, SOLVER=SPOOLES",
+                  f"{modes}, 0., {f_max:g}", "*END STEP", ""]
+        return "\n".join(lines), dofs
+    # the pads in frictional contact with the disc: penalty k_n [N/m^3] as
+    # N/mm^3, Coulomb mu with its stick slope [N/mm^3]
+    lines += ["*SURFACE INTERACTION, NAME=PAD",
+              "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
+              f"{friction['k_n'] * 1e-9:g}", "*FRICTION",
+              f"{friction['mu']:g}, {friction['stick_slope']:g}"]
+    for slave, master in TIES:
+        lines += ["*CONTACT PAIR, INTERACTION=PAD, TYPE=SURFACE TO SURFACE",
                   f"{name(slave)}, {name(master)}"]
-    lines += ["*BOUNDARY"] + [f"{name(hold)}, 1, 3" for hold in HOLDS]
-    lines += ["*STEP", "*FREQUENCY, SOLVER=SPOOLES",
-              f"{modes}, 0., {f_max:g}", "*END STEP", ""]
-    return "\n".join(lines), 3 * (len(coords) - len(fixed))
+    lines += ["*BOUNDARY", "BRACKET_MOUNTS, 1, 3", "PISTON_BACK, 1, 2",
+              "CALIPER_BORE, 1, 2",
+              "*STEP, NLGEOM=NO, INC=1000", "*STATIC", "0.1, 1.",
+              "*BOUNDARY"]
+    # the disc turned by theta about z at its hub, counterclockwise (squeal's
+    # Interface/Rotation sense): the linearised rotation theta e_z x x, which
+    # strains nothing in small-strain elasticity
+    theta = friction["theta"]
+    for n in sorted(face_nodes("disc hub")):
+        x, y, _ = coords[n]
+        lines += [f"{n + 1}, 1, 1, {-theta * y:.12g}",
+                  f"{n + 1}, 2, 2, {theta * x:.12g}", f"{n + 1}, 3, 3, 0."]
+    lines.append("*DLOAD")
+    for face in loads:
+        area = sum(quad_area([coords[v] for v in quad])
+                   for quad in mesh.faces[face])
+        pressure = friction["force"] / area    # N/mm^2, into the face
+        for quad in mesh.faces[face]:
+            e, number = face_of[frozenset(quad)]
+            lines.append(f"{e}, P{number}, {pressure:.12g}")
+    lines += ["*END STEP", "*STEP, PERTURBATION", "*FREQUENCY",
+              f"{modes}, {friction['f_min']:g}, {f_max:g}",
+              "*END STEP", ""]
+    return "\n".join(lines), dofs
 
+
+def quad_area(p):
+    """Area of the planar quadrilateral with the corners P, in order."""
+    a = [x - y for x, y in zip(p[2], p[0])]
+    b = [x - y for x, y in zip(p[3], p[1])]
+    c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+         a[0] * b[1] - a[1] * b[0]]
+    return 0.5 * math.sqrt(sum(x * x for x in c))
 
 if __name__ == "__main__":
     import argparse
