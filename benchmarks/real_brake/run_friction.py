@@ -24,7 +24,6 @@ force pair, no damping.
 Prints the unstable eigenvalues of both (Re lambda > 1 1/s) and pairs each
 of squeal's with CalculiX's nearest in frequency.
 """
-import csv
 import math
 import os
 import subprocess
@@ -88,13 +87,7 @@ subsection Output
   set Mode shapes = none
 end
 """)
-        env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
-        r, seconds, mb = run_modes.timed([squeal, out + ".prm"], work, env)
-        if r.returncode != 0:
-            sys.exit(f"squeal failed\n{r.stdout[-3000:]}\n{r.stderr}")
-        with open(os.path.join(out, "eigenvalues.csv")) as f:
-            values = sorted((float(row["freq_Hz"]), float(row["re_per_s"]))
-                            for row in csv.DictReader(f))
+        _, seconds, mb, values = run_modes.run_squeal(squeal, out, work)
         return dict(code="squeal", seconds=seconds, memory_MB=mb,
                     values=values)
     return run_modes.cached(out + ".json", run)

@@ -66,6 +66,21 @@ def cached(record, run):
     return result
 
 
+def run_squeal(squeal, out, work):
+    """Runs SQUEAL on OUT.prm (results into the folder OUT) with one BLAS
+    thread, timed; stops on a failure. (CompletedProcess, wall s, peak
+    memory MB, sorted [(frequency [Hz], Re lambda [1/s])] of
+    eigenvalues.csv)."""
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+    r, seconds, mb = timed([squeal, out + ".prm"], work, env)
+    if r.returncode != 0:
+        sys.exit(f"{out}: squeal failed\n{r.stdout[-3000:]}\n{r.stderr}")
+    with open(os.path.join(out, "eigenvalues.csv")) as f:
+        values = sorted((float(row["freq_Hz"]), float(row["re_per_s"]))
+                        for row in csv.DictReader(f))
+    return r, seconds, mb, values
+
+
 def mesh_dir(work, h):
     out = os.path.join(work, f"mesh_{h:g}")
     if not os.path.isfile(os.path.join(out, "brake_scene.prm")):
@@ -120,13 +135,9 @@ subsection Output
   set Mode shapes = none
 end
 """)
-        env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
-        r, seconds, mb = timed([squeal, out + ".prm"], work, env)
-        if r.returncode != 0:
-            sys.exit(f"{name}: squeal failed\n{r.stdout[-3000:]}\n{r.stderr}")
+        r, seconds, mb, values = run_squeal(squeal, out, work)
         dofs = int(re.search(r"(\d+) DoFs", r.stdout).group(1))
-        with open(os.path.join(out, "eigenvalues.csv")) as f:
-            freqs = sorted(float(row["freq_Hz"]) for row in csv.DictReader(f))
+        freqs = sorted(f for f, _ in values)
         return dict(code="squeal", mesh_mm=h, element=f"degree {degree}",
                     dofs=dofs, seconds=seconds, memory_MB=mb, freqs=freqs)
     return cached(out + ".json", run)
