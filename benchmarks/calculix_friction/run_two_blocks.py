@@ -8,7 +8,9 @@ usage: /usr/bin/python3 benchmarks/calculix_friction/run_two_blocks.py
 
 Prints, per friction coefficient, load and CalculiX stick slope, the first
 12 frequencies of both codes, their largest relative difference and the
-most unstable eigenvalue of each (README.md here has the tables).
+most unstable eigenvalue of each; then CalculiX's answer at mu = 0.1 and
+0.2 against the number of increments of its static step (README.md here
+has the tables).
 """
 import os
 import sys
@@ -62,6 +64,20 @@ def main():
                 print(f"| {mu:g} | {force:g} | {slope:g} | CalculiX | "
                       f"{show(c)} | {100 * worst:.3f} % | "
                       f"{most_unstable(c)} | {seconds:.1f} |")
+    # CalculiX's answer against the static step's increments (fixed, of
+    # the given fraction of the step), at 10 N and stick slope 1 N/mm^3
+    print()
+    print("| mu | static step's increments | first two frequencies [Hz] | "
+          "most unstable: f [Hz], Re lambda [1/s] |")
+    print("|---|---|---|---|")
+    for mu in (0.1, 0.2):
+        for increment in (0.2, 0.1, 0.05, 0.02, 0.01, 0.005):
+            c = two_blocks.run_calculix(
+                two_blocks.calculix_deck(mu, 10.0, SLIDE, 1.0,
+                                         increment=increment),
+                f"ccx_{mu:g}_increment_{increment:g}", work)
+            print(f"| {mu:g} | {round(1 / increment)} x {increment:g} | "
+                  f"{c[0][0]:.0f}, {c[1][0]:.0f} | {most_unstable(c)} |")
 
 
 if __name__ == "__main__":

@@ -151,10 +151,13 @@ end
 """
 
 
-def calculix_deck(mu, force, slide, stick_slope, modes=40, bodies=None):
+def calculix_deck(mu, force, slide, stick_slope, modes=40, bodies=None,
+                  increment=None):
     """CalculiX's deck: static preload with friction (the base moved by SLIDE
     [mm], the traction FORCE [N] on the block's top), then the perturbed,
-    unsymmetric *FREQUENCY (MODES eigenvalues). STICK_SLOPE in N/mm^3."""
+    unsymmetric *FREQUENCY (MODES eigenvalues). STICK_SLOPE in N/mm^3. The
+    static step's increments: CalculiX's automatic ones from 0.1 of the step,
+    or fixed ones of INCREMENT."""
     bodies = bodies or parts()
     lines, nodes, elements, surfaces = ["*NODE"], [], {}, {}
     element = 0
@@ -200,7 +203,9 @@ def calculix_deck(mu, force, slide, stick_slope, modes=40, bodies=None):
               "*CONTACT PAIR, INTERACTION=PAD, TYPE=SURFACE TO SURFACE",
               "BLOCK_BOTTOM, BASE_TOP",
               "*BOUNDARY", "BASE_BOTTOM, 2, 3", "BLOCK_TOP, 1, 2",
-              "*STEP, NLGEOM=NO, INC=1000", "*STATIC", "0.1, 1.",
+              "*STEP, NLGEOM=NO, INC=1000", "*STATIC",
+              f"{increment:g}, 1., {increment:g}, {increment:g}"
+              if increment else "0.1, 1.",
               "*BOUNDARY", f"BASE_BOTTOM, 1, 1, {slide:g}", "*DLOAD"]
     traction = force / (BLOCK_AREA * 1e6)   # N/mm^2
     lines += [f"{e}, P{n}, {traction:.12g}" for e, n in surfaces["block top"]]

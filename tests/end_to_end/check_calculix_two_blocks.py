@@ -1,22 +1,21 @@
 """squeal's friction-coupled CEA against an independent code: CalculiX 2.20
 (Debian's calculix-ccx, installed by scripts/setup.sh) on the two-block
 scene of benchmarks/calculix_friction/two_blocks.py, the same trilinear
-mesh (4 455 DoFs, 855 of them held) in both codes. CalculiX: static preload with Coulomb
-friction (the base moved 10 mm under the block, a 10 N traction so that its
-preload's stress stiffening stays below 1e-5), then the perturbed,
-unsymmetric *FREQUENCY; squeal: the preloaded CEA with steady sliding.
+mesh (4 455 DoFs, 855 of them held) in both codes. CalculiX: static preload
+with Coulomb friction (the base moved 10 mm under the block, a 10 N
+traction so that its preload's stress stiffening stays below 1e-5), then
+the perturbed, unsymmetric *FREQUENCY; squeal: the preloaded CEA with
+steady sliding.
 
 Checks (measured values in benchmarks/calculix_friction/README.md):
 - without friction the first 12 frequencies agree to 1e-4 (measured 4e-5):
   the same element matrices and the same penalty contact stiffness;
-- at mu = 0.1 both codes find the one mode lock-in below 100 kHz, at the
-  same frequency within 0.2 % (measured 0.055 %) and with growth rates
-  within 25 % of each other (measured 972 and 1188 1/s);
-- the other modes of the first 12 agree within 0.5 % (measured 0.24 %)
-  except the block's sliding mode along the sliding direction, which
-  CalculiX's Coulomb tangent stiffens by 2-5 % (measured 3.6 %; squeal's
-  steady-sliding coupling moves it by 0.04 %): the known difference of the
-  two linearisations, pinned so that a change shows.
+- at mu = 0.2 both codes find the one mode lock-in below 100 kHz, at the
+  same frequency within 1 % (measured 0.29 %; 0.3-0.6 % whatever the
+  increments of CalculiX's static step) and with growth rates within a
+  factor 2 (measured 8461 and 7537 1/s; CalculiX's moves between 3583 and
+  7708 1/s with its increments, squeal's steady-sliding tangent has no
+  such history).
 
 usage: check_calculix_two_blocks.py SQUEAL WORKDIR
 """
@@ -42,7 +41,7 @@ def main():
         sys.exit(1)
     os.makedirs(work, exist_ok=True)
     runs = {}
-    for mu in (0.0, 0.1):
+    for mu in (0.0, 0.2):
         runs[mu] = (
             two_blocks.run_squeal(squeal, mu, FORCE, SLIDE, f"squeal_{mu:g}",
                                   work),
@@ -64,33 +63,20 @@ def main():
           max(re for _, re in s + c) < 1.0,
           f"largest Re lambda {max(re for _, re in s + c):.3g} 1/s")
 
-    s, c = runs[0.1]
+    s, c = runs[0.2]
     unstable = [[v for v in values if v[0] < 1e5 and v[1] > 1.0]
                 for values in (s, c)]
-    check("at mu = 0.1 each code finds exactly one unstable mode below "
+    check("at mu = 0.2 each code finds exactly one unstable mode below "
           "100 kHz", [len(u) for u in unstable] == [1, 1],
           f"squeal {unstable[0]}, CalculiX {unstable[1]}", show=True)
     if [len(u) for u in unstable] == [1, 1]:
         (fs, rs), (fc, rc) = unstable[0][0], unstable[1][0]
-        check("the lock-in frequencies agree within 0.2 %",
-              abs(fs - fc) / fs < 2e-3,
+        check("the lock-in frequencies agree within 1 %",
+              abs(fs - fc) / fs < 1e-2,
               f"squeal {fs:.1f} Hz, CalculiX {fc:.1f} Hz", show=True)
-        check("the growth rates agree within 25 %",
-              abs(rs - rc) / rs < 0.25,
+        check("the growth rates agree within a factor 2",
+              0.5 < rc / rs < 2.0,
               f"squeal {rs:.1f} 1/s, CalculiX {rc:.1f} 1/s", show=True)
-    # the sliding-direction mode: the mode of the lowest pair that CalculiX
-    # moves most
-    pair = sorted(range(2), key=lambda k: abs(c[k][0] - s[k][0]) / s[k][0])
-    sliding = pair[1]
-    others = [k for k in range(MODES) if k != sliding]
-    worst = max(abs(c[k][0] - s[k][0]) / s[k][0] for k in others)
-    check("the other 11 of the first 12 frequencies agree within 0.5 %",
-          worst < 5e-3, f"largest difference {worst:.2e}", show=True)
-    shift = (c[sliding][0] - s[sliding][0]) / s[sliding][0]
-    check("CalculiX's Coulomb tangent stiffens the sliding mode by 2-5 %",
-          0.02 < shift < 0.05,
-          f"{s[sliding][0]:.1f} Hz in squeal, {c[sliding][0]:.1f} Hz in "
-          f"CalculiX", show=True)
     finish()
 
 
