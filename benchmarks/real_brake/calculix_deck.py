@@ -59,7 +59,8 @@ def name(s):
 def deck(h, f_max, modes, friction=None):
     """The text of the deck at element size h [mm]; (text, DoFs). With
     FRICTION (a dict: k_n [N/m^3], mu, stick_slope [N/mm^3], theta [rad],
-    force [N], f_min [Hz]) the pads are in frictional contact with the disc
+    force [N], f_min [Hz], and increment, the static step's fixed increment,
+    if not CalculiX's automatic ones from 0.1 of the step) the pads are in frictional contact with the disc
     instead of tied, the piston's back and the caliper's bore are held in x
     and y (the model has no springs), and the deck is
     CalculiX's brake-squeal practice: a *STATIC step that presses the pads
@@ -158,7 +159,9 @@ def deck(h, f_max, modes, friction=None):
                   f"{name(slave)}, {name(master)}"]
     lines += ["*BOUNDARY", "BRACKET_MOUNTS, 1, 3", "PISTON_BACK, 1, 2",
               "CALIPER_BORE, 1, 2",
-              "*STEP, NLGEOM=NO, INC=1000", "*STATIC", "0.1, 1.",
+              "*STEP, NLGEOM=NO, INC=1000", "*STATIC",
+              "{0:g}, 1., {0:g}, {0:g}".format(friction["increment"])
+              if friction.get("increment") else "0.1, 1.",
               "*BOUNDARY"]
     # the disc turned by theta about z at its hub, counterclockwise (squeal's
     # Interface/Rotation sense): the linearised rotation theta e_z x x, which

@@ -4,7 +4,7 @@ brake-squeal practice (static preload with Coulomb friction, then a
 perturbed, unsymmetric *FREQUENCY), same mesh, same machine.
 
 usage: /usr/bin/python3 benchmarks/real_brake/run_friction.py [SQUEAL] [WORKDIR]
-           [--mu MU]
+           [--mu MU] [--increment DT]
 
 The model, the same in both codes: every body and material of
 brake_scene.prm on the 10 mm mesh, the pads in penalty contact with the disc
@@ -93,14 +93,15 @@ end
     return run_modes.cached(out + ".json", run)
 
 
-def calculix_run(work, mu):
-    name = f"ccx_friction_{mu:g}"
+def calculix_run(work, mu, increment=None):
+    name = f"ccx_friction_{mu:g}" + \
+        (f"_increment_{increment:g}" if increment else "")
 
     def run():
         text, _ = calculix_deck.deck(
             H, F_MAX, 200, friction=dict(
                 k_n=K_N, mu=max(mu, 1e-9), stick_slope=1.0, force=0.01 * FORCE,
-                theta=2 * math.pi / 96, f_min=F_MIN))
+                theta=2 * math.pi / 96, f_min=F_MIN, increment=increment))
         measured = {}
 
         def timed(args, cwd):
@@ -117,11 +118,13 @@ def calculix_run(work, mu):
 def main():
     root = os.path.normpath(os.path.join(here, "..", ".."))
     args = sys.argv[1:]
-    mu = 0.4
-    if "--mu" in args:
-        i = args.index("--mu")
-        mu = float(args[i + 1])
-        del args[i:i + 2]
+    options = {"--mu": 0.4, "--increment": None}
+    for option in options:
+        if option in args:
+            i = args.index(option)
+            options[option] = float(args[i + 1])
+            del args[i:i + 2]
+    mu, increment = options["--mu"], options["--increment"]
     squeal = os.path.abspath(args[0]) if args else \
         os.path.join(root, "build", "squeal")
     work = os.path.abspath(args[1] if len(args) > 1 else
@@ -129,7 +132,7 @@ def main():
     os.makedirs(work, exist_ok=True)
     if subprocess.run(["which", "ccx"], capture_output=True).returncode:
         sys.exit("run_friction.py needs CalculiX (calculix-ccx)")
-    s, c = squeal_run(squeal, work, mu), calculix_run(work, mu)
+    s, c = squeal_run(squeal, work, mu), calculix_run(work, mu, increment)
     for r in (s, c):
         band = [v for v in r["values"] if F_MIN <= v[0] <= F_MAX]
         print(f"{r['code']}: {len(band)} eigenvalues in {F_MIN:g}-"
