@@ -61,7 +61,10 @@ namespace squeal
       dealii::Vector<double>            D;             ///< n_s, m^2
       /// row j: (master node l, M_jl [m^2]) for the nonzero entries
       std::vector<std::vector<std::pair<unsigned int, double>>> M;
-      dealii::Vector<double> gap0; ///< n_s, weighted initial gap [m^3]
+      /// n_s, weighted initial gap [m^3]: -n_j . sum_l M_jl (x_j - x_l), or
+      /// infinity for a node only partly over the master (its row of M sums
+      /// to less than the integral of its dual shape function)
+      dealii::Vector<double> gap0;
       /// n_s x n_s: the standard mass matrix int phi_j phi_k of the slave
       /// surface [m^2], for the nodal pressure
       Eigen::SparseMatrix<double> slave_mass;
