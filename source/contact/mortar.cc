@@ -208,25 +208,30 @@ namespace squeal
         for (const Point<3> &x : sf.outline)
           own.push_back(to_plane(x));
         own = counter_clockwise(own);
+        // the point of the plane at X2, and the dual shape functions psi_a
+        // of the face at a point XS of the plane
+        const auto on_plane = [&](const Point<2> &x2) {
+          return sf.centre + x2[0] * e1 + x2[1] * e2;
+        };
+        const auto dual_values = [&](const Point<3> &xs) {
+          const Point<3> us = unit_on_face(mapping, sf.cell, sf.face_no, xs);
+          std::vector<double> phi(n_f), psi(n_f, 0.);
+          for (unsigned int b2 = 0; b2 < n_f; ++b2)
+            phi[b2] = scalar.shape_value(sf.nodes[b2].second, us);
+          for (unsigned int a2 = 0; a2 < n_f; ++a2)
+            for (unsigned int b2 = 0; b2 < n_f; ++b2)
+              psi[a2] += A(a2, b2) * phi[b2];
+          return psi;
+        };
         // int psi_j over the whole face as the segments integrate it (the
         // plane of the face's corners): the measure a fully covered node's
         // row of M sums to, also on a curved face, whose plane differs from
         // the face D_j is integrated on
         for (const auto &[x2, w] : polygon_quadrature(own, tri))
           {
-            const Point<3> us =
-              unit_on_face(mapping,
-                           sf.cell,
-                           sf.face_no,
-                           sf.centre + x2[0] * e1 + x2[1] * e2);
+            const std::vector<double> psi = dual_values(on_plane(x2));
             for (unsigned int a2 = 0; a2 < n_f; ++a2)
-              {
-                double psi = 0.;
-                for (unsigned int b2 = 0; b2 < n_f; ++b2)
-                  psi +=
-                    A(a2, b2) * scalar.shape_value(sf.nodes[b2].second, us);
-                own_psi[sf.nodes[a2].first] += w * psi;
-              }
+              own_psi[sf.nodes[a2].first] += w * psi[a2];
           }
 
         // master faces up to one face size behind the slave face count too
@@ -254,28 +259,19 @@ namespace squeal
             in_reach = true;
             for (const auto &[x2, w] : polygon_quadrature(overlap, tri))
               {
-                const Point<3> xs = sf.centre + x2[0] * e1 + x2[1] * e2;
+                const Point<3> xs = on_plane(x2);
                 // along the slave normal onto the master face's plane
                 const double s =
                   ((mf.centre - xs) * mf.normal) / (n * mf.normal);
                 const Point<3> xm = xs + s * n;
-                const Point<3> us =
-                  unit_on_face(mapping, sf.cell, sf.face_no, xs);
                 const Point<3> um =
                   unit_on_face(mapping, mf.cell, mf.face_no, xm);
                 op.covered_area += w;
-                std::vector<double> phi(n_f);
-                for (unsigned int b2 = 0; b2 < n_f; ++b2)
-                  phi[b2] = scalar.shape_value(sf.nodes[b2].second, us);
+                const std::vector<double> psi = dual_values(xs);
                 for (unsigned int a2 = 0; a2 < n_f; ++a2)
-                  {
-                    double psi = 0.;
-                    for (unsigned int b2 = 0; b2 < n_f; ++b2)
-                      psi += A(a2, b2) * phi[b2];
-                    for (const auto &[l, sc] : mf.nodes)
-                      M[sf.nodes[a2].first][l] +=
-                        w * psi * scalar.shape_value(sc, um);
-                  }
+                  for (const auto &[l, sc] : mf.nodes)
+                    M[sf.nodes[a2].first][l] +=
+                      w * psi[a2] * scalar.shape_value(sc, um);
               }
           }
         return in_reach;
