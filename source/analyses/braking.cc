@@ -607,7 +607,14 @@ namespace squeal
         pcout << "; resumed at step " << first_step << " (t = " << d.time()
               << " s)";
       pcout << std::endl;
-      Vector<double>    f(model.n_dofs());
+      // the loads act on a few faces: f is set on their DoFs only
+      Vector<double>                       f(model.n_dofs());
+      std::vector<types::global_dof_index> load_support;
+      for (types::global_dof_index i = 0; i < model.n_dofs(); ++i)
+        if (std::any_of(loads.begin(), loads.end(), [i](const auto &g) {
+              return g.second[i] != 0.;
+            }))
+          load_support.push_back(i);
       const auto        start       = std::chrono::steady_clock::now();
       auto              last_report = start;
       const StopSignals signals;
@@ -621,9 +628,12 @@ namespace squeal
         {
           {
             TimerOutput::Scope ts(timer, "time steps");
-            f.equ(ramp(k * dt, loads[0].first), loads[0].second);
-            for (unsigned int g = 1; g < loads.size(); ++g)
-              f.add(ramp(k * dt, loads[g].first), loads[g].second);
+            for (const auto i : load_support)
+              {
+                f[i] = 0.;
+                for (const auto &[T, load] : loads)
+                  f[i] += ramp(k * dt, T) * load[i];
+              }
             d.step(f);
           }
           if (k % every == 0)

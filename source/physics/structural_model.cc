@@ -35,7 +35,10 @@ namespace squeal
                                      MPI_Comm                         comm)
       : prm(prm)
       , comm(comm)
-      , triangulation(comm)
+      , triangulation(comm,
+                      Triangulation<3>::none,
+                      false,
+                      parallel::shared::Triangulation<3>::partition_metis)
       , fe(FE_Q<3>(prm.mesh.fe_degree), 3)
       , mapping(prm.mesh.fe_degree)
       , dof_handler(triangulation)

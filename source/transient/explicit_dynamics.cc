@@ -231,6 +231,12 @@ namespace squeal
       reinit_vectors();
       for (unsigned int i = 0; i < n; ++i)
         inverse_mass[i] = fixed[i] ? 0. : 1. / mass[i];
+      const auto first = partitioner->local_range().first;
+      for (unsigned int l = 0; l < partitioner->locally_owned_size(); ++l)
+        {
+          owned_inverse_mass.push_back(inverse_mass[first + l]);
+          owned_free.push_back(fixed[first + l] ? 0. : 1.);
+        }
     }
 
     void
@@ -324,43 +330,79 @@ namespace squeal
     void
     ExplicitDynamics::step(const Vector<double> &f)
     {
-      const double dt = settings.time_step;
+      const double       dt = settings.time_step;
+      const unsigned int n  = layout->locally_owned_size();
+      // the step's vector updates fused into passes over the owned entries
+      // (each pass reads and writes the vectors once)
       if (pending)
         {
           u.swap(u_next);
-          v_pred.add(dt, a); // v~_{n+1} = v~_n + dt a_n
           ++n_step;
         }
+      {
+        // v~_{n+1} = v~_n + dt a_n (after a step), then u_n + beta v~_n
+        double       *vp = v_pred.begin(), *w = work.begin();
+        const double *ua = u.begin(), *aa = a.begin();
+        const double  beta = settings.beta;
+        if (pending)
+          for (unsigned int l = 0; l < n; ++l)
+            {
+              vp[l] += dt * aa[l];
+              w[l] = ua[l] + beta * vp[l];
+            }
+        else
+          for (unsigned int l = 0; l < n; ++l)
+            w[l] = ua[l] + beta * vp[l];
+      }
       // a*_n = M^-1 (f_n - K (u_n + beta v~_n) - alpha M v~_n)
-      work = u;
-      work.add(settings.beta, v_pred);
       K(a, work);
       const double c = dt * dt * (settings.beta2 + 0.5);
-      for (unsigned int l = 0; l < layout->locally_owned_size(); ++l)
-        {
-          const auto i = layout->local_to_global(l);
-          if (fixed[i])
-            {
-              a.local_element(l)      = 0.;
-              u_next.local_element(l) = u.local_element(l);
-            }
-          else
-            {
-              double &ai = a.local_element(l);
-              ai         = (f[i] - ai) * inverse_mass[i] -
-                   settings.alpha * v_pred.local_element(l);
-              // u_{n+1} = u_n + dt v_n + dt^2/2 a_n, v_n = v~_n + dt beta2 a_n
-              u_next.local_element(l) =
-                u.local_element(l) + dt * v_pred.local_element(l) + c * ai;
-            }
-        }
+      {
+        double       *aa = a.begin(), *un = u_next.begin();
+        const double *ua = u.begin(), *vp = v_pred.begin(),
+                     *ff = f.begin() + layout->local_range().first,
+                     *im = owned_inverse_mass.data(), *free = owned_free.data();
+        const double alpha = settings.alpha;
+        // a fixed DoF: a = 0 and u_{n+1} = u_n exactly
+        for (unsigned int l = 0; l < n; ++l)
+          {
+            aa[l] = free[l] * ((ff[l] - aa[l]) * im[l] - alpha * vp[l]);
+            // u_{n+1} = u_n + dt v_n + dt^2/2 a_n,
+            // v_n = v~_n + dt beta2 a_n
+            un[l] = ua[l] + free[l] * dt * vp[l] + free[l] * c * aa[l];
+          }
+      }
       if (mortar)
         solve_contact();
-      // v_n = v~_n + dt beta2 a_n
-      v = v_pred;
-      v.add(dt * settings.beta2, a);
+      // v_n = v~_n + dt beta2 a_n, and the size of u_{n+1} (four partial
+      // sums in registers: one would chain every addition to the last)
+      double square_sum = 0.;
+      {
+        double       *vv = v.begin();
+        const double *vp = v_pred.begin(), *aa = a.begin(),
+                     *un = u_next.begin();
+        const double h   = dt * settings.beta2;
+        double       s0 = 0., s1 = 0., s2 = 0., s3 = 0.;
+        unsigned int l = 0;
+        for (; l + 4 <= n; l += 4)
+          {
+            for (unsigned int k = l; k < l + 4; ++k)
+              vv[k] = vp[k] + h * aa[k];
+            s0 += un[l] * un[l];
+            s1 += un[l + 1] * un[l + 1];
+            s2 += un[l + 2] * un[l + 2];
+            s3 += un[l + 3] * un[l + 3];
+          }
+        for (; l < n; ++l)
+          {
+            vv[l] = vp[l] + h * aa[l];
+            s0 += un[l] * un[l];
+          }
+        square_sum = (s0 + s1) + (s2 + s3);
+      }
       pending = true;
-      if (!std::isfinite(u_next.l2_norm()))
+      if (!std::isfinite(
+            Utilities::MPI::sum(square_sum, layout->get_mpi_communicator())))
         {
           std::ostringstream msg;
           msg << "the explicit solution is not finite at t = " << time()
