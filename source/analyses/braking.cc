@@ -397,9 +397,14 @@ namespace squeal
               as_text(difference) + " (relative)");
         }
       else
-        pcout << "Stiffness product: matrix-free on "
-              << Utilities::MPI::n_mpi_processes(comm) << " MPI ranks"
-              << std::endl;
+        {
+          const auto cells = Utilities::MPI::min_max_avg(
+            double(model.triangulation.n_locally_owned_active_cells()), comm);
+          pcout << "Stiffness product: matrix-free on "
+                << Utilities::MPI::n_mpi_processes(comm) << " MPI ranks ("
+                << cells.min << "-" << cells.max << " cells per rank)"
+                << std::endl;
+        }
 
       return product;
     }
@@ -624,6 +629,7 @@ namespace squeal
                                std::chrono::steady_clock::now() - start)
                                .count();
       };
+      double sweeps = 0.;
       for (unsigned int k = first_step; k < n_steps; ++k)
         {
           {
@@ -636,6 +642,10 @@ namespace squeal
               }
             d.step(f);
           }
+          sweeps += d.contact_state().pgs_iterations;
+          result.max_contact_sweeps =
+            std::max(result.max_contact_sweeps,
+                     d.contact_state().pgs_iterations);
           if (k % every == 0)
             record_sample();
           {
@@ -689,6 +699,8 @@ namespace squeal
             }
         }
       result.n_steps = n_steps;
+      result.mean_contact_sweeps =
+        n_steps > first_step ? sweeps / (n_steps - first_step) : 0.;
       result.wall_time =
         wall_before +
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)

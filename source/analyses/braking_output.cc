@@ -108,6 +108,7 @@ namespace squeal
         u.update_ghost_values();
         v.update_ghost_values();
         DataOut<3> out;
+        out.set_flags(io::vtk_flags());
         out.attach_dof_handler(model.dof_handler);
         out.add_data_vector(u,
                             std::vector<std::string>(3, "displacement_m"),
@@ -402,8 +403,13 @@ namespace squeal
             << result.leading_max_over_mean << " x the mean\n  "
             << result.n_steps << " steps in " << result.wall_time << " s ("
             << result.n_steps / result.wall_time << " steps/s, "
-            << result.wall_time / (tr.end_time * 1e3) << " s per simulated ms)"
-            << std::endl;
+            << result.wall_time / (tr.end_time * 1e3) << " s per simulated ms)";
+      if (result.max_contact_sweeps > 0)
+        pcout << "; contact: " << result.mean_contact_sweeps
+              << " projected Gauss-Seidel sweeps per step on average, at "
+                 "most "
+              << result.max_contact_sweeps;
+      pcout << std::endl;
     }
   } // namespace analyses
 } // namespace squeal

@@ -146,6 +146,7 @@ namespace squeal
                 << by_body[b.id].first / total << '\n';
         }
       DataOut<3> data_out;
+      data_out.set_flags(io::vtk_flags());
       data_out.attach_triangulation(model->triangulation);
       data_out.add_data_vector(indicator, "error_indicator");
       data_out.add_data_vector(body, "body");

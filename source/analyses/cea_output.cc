@@ -44,6 +44,7 @@ namespace squeal
       ghosted_im = i;
 
       DataOut<3> data_out;
+      data_out.set_flags(io::vtk_flags());
       data_out.attach_dof_handler(model->dof_handler);
       const std::vector<
         DataComponentInterpretation::DataComponentInterpretation>

@@ -293,6 +293,7 @@ namespace squeal
     {
       // every rank its own cells (DataOut takes the locally owned ones)
       DataOut<3> out;
+      out.set_flags(io::vtk_flags());
       out.attach_dof_handler(model.dof_handler);
       out.add_data_vector(
         state.displacement,

@@ -56,9 +56,13 @@ namespace squeal
       /// wall time of one stiffness product, assembled matrix [s]
       double sparse_product = 0.;
       /// wall time of one stiffness product, matrix-free [s]
-      double               matrix_free_product = 0.;
-      unsigned int         n_steps             = 0;  ///< time steps taken
-      double               wall_time           = 0.; ///< s, the time loop
+      double       matrix_free_product = 0.;
+      unsigned int n_steps             = 0;  ///< time steps taken
+      double       wall_time           = 0.; ///< s, the time loop
+      /// projected Gauss-Seidel sweeps of the contact step: mean and most
+      /// per time step (0 without contact)
+      double               mean_contact_sweeps = 0.;
+      unsigned int         max_contact_sweeps  = 0;
       double               dominant_frequency  = 0.; ///< Hz, probe acceleration
       transient::GrowthFit growth; ///< envelope of the probe velocity
       /// the probe velocity's amplitude at the dominant frequency alone

@@ -10,6 +10,8 @@
 
 #include <deal.II/numerics/data_out_faces.h>
 
+#include <squeal/io/output_directory.h>
+
 #include <set>
 #include <utility>
 
@@ -31,7 +33,9 @@ namespace squeal
       explicit BoundaryFaceOutput(std::set<dealii::types::boundary_id> ids)
         : dealii::DataOutFaces<3>(false)
         , ids(std::move(ids))
-      {}
+      {
+        set_flags(squeal::io::vtk_flags());
+      }
 
       /** The first face with the boundary id (empty if none). */
       FaceDescriptor
