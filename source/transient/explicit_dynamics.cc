@@ -244,6 +244,7 @@ namespace squeal
     {
       for (auto *vec : {&u, &v, &a, &v_pred, &u_next, &work})
         vec->reinit(layout);
+      u_ghosts_current = false;
     }
 
     void
@@ -323,6 +324,7 @@ namespace squeal
       a       = 0.;
       n_step  = 0;
       pending = false;
+      u_ghosts_current = false;
       for (auto &l : multiplier)
         l = Tensor<1, 3>();
     }
@@ -337,6 +339,7 @@ namespace squeal
       if (pending)
         {
           u.swap(u_next);
+          u_ghosts_current = mortar != nullptr;
           ++n_step;
         }
       {
@@ -428,7 +431,8 @@ namespace squeal
       // Every rank sees the interface: the owners' values into the ghosts;
       // then each rank runs the same sweeps on the same numbers, writing
       // the corrections into its owned entries and its ghost copies alike.
-      u.update_ghost_values();
+      if (!u_ghosts_current)
+        u.update_ghost_values();
       u_next.update_ghost_values();
       const auto relative = [&](const unsigned int       j,
                                 const DistributedVector &x) {
@@ -608,6 +612,7 @@ namespace squeal
         throw std::runtime_error("the saved integrator state is short");
       n_step  = header[0];
       pending = header[1] != 0;
+      u_ghosts_current = false;
     }
 
     double
