@@ -665,9 +665,9 @@ namespace squeal
           // SIGINT/SIGTERM: every rank stops after the same step, with a
           // checkpoint to resume from (the ranks agree every 64 steps)
           const int stop =
-            !parallel     ? int(stop_signal) :
+            !parallel    ? int(stop_signal) :
             k % 64 == 63 ? Utilities::MPI::max(int(stop_signal), comm) :
-                            0;
+                           0;
           if (stop != 0 && k + 1 < n_steps)
             {
               if (last_checkpoint != k + 1)

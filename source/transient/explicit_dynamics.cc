@@ -320,10 +320,10 @@ namespace squeal
           u.local_element(l) = u0[i];
           v.local_element(l) = v0[i];
         }
-      v_pred  = v;
-      a       = 0.;
-      n_step  = 0;
-      pending = false;
+      v_pred           = v;
+      a                = 0.;
+      n_step           = 0;
+      pending          = false;
       u_ghosts_current = false;
       for (auto &l : multiplier)
         l = Tensor<1, 3>();
@@ -610,8 +610,8 @@ namespace squeal
           in.read(reinterpret_cast<char *>(&l[k]), sizeof(double));
       if (!in)
         throw std::runtime_error("the saved integrator state is short");
-      n_step  = header[0];
-      pending = header[1] != 0;
+      n_step           = header[0];
+      pending          = header[1] != 0;
       u_ghosts_current = false;
     }
 

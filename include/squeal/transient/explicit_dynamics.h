@@ -319,12 +319,12 @@ namespace squeal
       ExplicitSettings                settings;
       const contact::MortarOperators *mortar = nullptr;
 
-      unsigned int              n_step  = 0;
-      bool                      pending = false; ///< t_n complete, not advanced
+      unsigned int n_step  = 0;
+      bool         pending = false; ///< t_n complete, not advanced
       /// the interface ghosts of u equal their owners' values: u_{n+1}
       /// leaves the contact step so (every rank applies the same
       /// corrections to its owned entries and ghost copies alike)
-      bool u_ghosts_current = false;
+      bool                      u_ghosts_current = false;
       DistributedVector         u, v, a, v_pred, u_next;
       mutable DistributedVector work;
       /// the serial copies of the SparseMatrix constructor's product
