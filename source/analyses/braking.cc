@@ -612,9 +612,11 @@ namespace squeal
         pcout << "; resumed at step " << first_step << " (t = " << d.time()
               << " s)";
       pcout << std::endl;
-      // the loads act on a few faces: f is set on their DoFs only
+      // the loads act on a few faces: f is set on their DoFs only, each
+      // load scaled by its ramp's factor at the step
       Vector<double>                       f(model.n_dofs());
       std::vector<types::global_dof_index> load_support;
+      std::vector<double>                  factors(loads.size());
       for (types::global_dof_index i = 0; i < model.n_dofs(); ++i)
         if (std::any_of(loads.begin(), loads.end(), [i](const auto &g) {
               return g.second[i] != 0.;
@@ -634,11 +636,13 @@ namespace squeal
         {
           {
             TimerOutput::Scope ts(timer, "time steps");
+            for (unsigned int g = 0; g < loads.size(); ++g)
+              factors[g] = ramp(k * dt, loads[g].first);
             for (const auto i : load_support)
               {
                 f[i] = 0.;
-                for (const auto &[T, load] : loads)
-                  f[i] += ramp(k * dt, T) * load[i];
+                for (unsigned int g = 0; g < loads.size(); ++g)
+                  f[i] += factors[g] * loads[g].second[i];
               }
             d.step(f);
           }

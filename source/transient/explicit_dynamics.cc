@@ -233,10 +233,7 @@ namespace squeal
         inverse_mass[i] = fixed[i] ? 0. : 1. / mass[i];
       const auto first = partitioner->local_range().first;
       for (unsigned int l = 0; l < partitioner->locally_owned_size(); ++l)
-        {
-          owned_inverse_mass.push_back(inverse_mass[first + l]);
-          owned_free.push_back(fixed[first + l] ? 0. : 1.);
-        }
+        owned_free.push_back(fixed[first + l] ? 0. : 1.);
     }
 
     void
@@ -362,9 +359,11 @@ namespace squeal
       const double c = dt * dt * (settings.beta2 + 0.5);
       {
         double       *aa = a.begin(), *un = u_next.begin();
+        const auto    first = layout->local_range().first;
         const double *ua = u.begin(), *vp = v_pred.begin(),
-                     *ff = f.begin() + layout->local_range().first,
-                     *im = owned_inverse_mass.data(), *free = owned_free.data();
+                     *ff   = f.begin() + first,
+                     *im   = inverse_mass.begin() + first,
+                     *free = owned_free.data();
         const double alpha = settings.alpha;
         // a fixed DoF: a = 0 and u_{n+1} = u_n exactly
         for (unsigned int l = 0; l < n; ++l)

@@ -314,8 +314,8 @@ namespace squeal
       /// 1 / m per DoF [1/kg], 0 on fixed DoFs (n_dofs, every rank)
       dealii::Vector<double> inverse_mass;
       std::vector<bool>      fixed;
-      /// the owned entries of inverse_mass, and 1 (free) or 0 (fixed)
-      std::vector<double>             owned_inverse_mass, owned_free;
+      /// 1 (free) or 0 (fixed) per owned DoF: the step's mask
+      std::vector<double>             owned_free;
       ExplicitSettings                settings;
       const contact::MortarOperators *mortar = nullptr;
 
