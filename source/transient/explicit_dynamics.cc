@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <istream>
+#include <map>
 #include <ostream>
 #include <random>
 #include <sstream>
@@ -266,41 +267,51 @@ namespace squeal
           layout->get_mpi_communicator());
         reinit_vectors();
       }
-      rows.assign(n_s, {});
       delassus.assign(n_s, 0.);
       master_slide.assign(n_s, Tensor<1, 3>());
       multiplier.assign(n_s, Tensor<1, 3>());
+      iface_local.clear();
+      iface_inverse_mass.clear();
+      row_start.assign(1, 0);
+      row_node.clear();
+      row_w.clear();
       // The node's 3 x 3 Delassus block is c sum_k w_k^2 diag(1/m_k) (0 for
       // a fixed component); the local solve uses its largest entry, which
       // under-relaxes nodes with a fixed component and keeps the exact
       // local solution elsewhere (the fixed point is the same).
-      const auto node_inverse_mass = [&](const contact::NodeDofs &d) {
-        return std::max(
-          {inverse_mass[d[0]], inverse_mass[d[1]], inverse_mass[d[2]]});
-      };
+      std::map<types::global_dof_index, unsigned int> compact_node;
       for (unsigned int j = 0; j < n_s; ++j)
         {
-          if (!(m.D[j] > 0.))
-            continue;
-          const auto add = [&](const contact::NodeDofs &d, const double w) {
-            GapNode node;
-            for (unsigned int k = 0; k < 3; ++k)
-              {
-                node.local[k]        = layout->global_to_local(d[k]);
-                node.inverse_mass[k] = inverse_mass[d[k]];
-              }
-            node.w = w;
-            rows[j].push_back(node);
-            delassus[j] += w * w * node_inverse_mass(d);
-          };
-          add(m.slave_dofs[j], -m.D[j]);
-          for (const auto &[l, w] : m.M[j])
+          if (m.D[j] > 0.)
             {
-              add(m.master_dofs[l], w);
-              if (master_velocity)
-                master_slide[j] += w * master_velocity(m.master_points[l]);
+              const auto add = [&](const contact::NodeDofs &d, const double w) {
+                const auto [it, is_new] =
+                  compact_node.emplace(d[0], compact_node.size());
+                if (is_new)
+                  for (unsigned int k = 0; k < 3; ++k)
+                    {
+                      iface_local.push_back(layout->global_to_local(d[k]));
+                      iface_inverse_mass.push_back(inverse_mass[d[k]]);
+                    }
+                row_node.push_back(it->second);
+                row_w.push_back(w);
+                delassus[j] += w * w *
+                               std::max({inverse_mass[d[0]],
+                                         inverse_mass[d[1]],
+                                         inverse_mass[d[2]]});
+              };
+              add(m.slave_dofs[j], -m.D[j]);
+              for (const auto &[l, w] : m.M[j])
+                {
+                  add(m.master_dofs[l], w);
+                  if (master_velocity)
+                    master_slide[j] += w * master_velocity(m.master_points[l]);
+                }
             }
+          row_start.push_back(row_node.size());
         }
+      iface_start.assign(iface_local.size(), 0.);
+      iface_next.assign(iface_local.size(), 0.);
       contact.pressure.reinit(n_s);
       contact.slip_velocity.reinit(n_s);
       contact.traction.assign(n_s, Tensor<1, 3>());
@@ -424,7 +435,7 @@ namespace squeal
       const double       dt  = settings.time_step;
       const double       c   = dt * dt * (settings.beta2 + 0.5);
       const double       mu  = settings.friction_coefficient;
-      const unsigned int n_s = rows.size();
+      const unsigned int n_s = multiplier.size();
       // R_j(x) = sum_k w_k x_k: weighted motion of the master against the
       // slave node j [m^3 or m^3/s].
       // Every rank sees the interface: the owners' values into the ghosts;
@@ -433,28 +444,45 @@ namespace squeal
       if (!u_ghosts_current)
         u.update_ghost_values();
       u_next.update_ghost_values();
-      const auto relative = [&](const unsigned int       j,
-                                const DistributedVector &x) {
+      // The sweeps run on compact copies of the interface entries of u_n
+      // and u_{n+1} (gathered here, u_{n+1}'s scattered back after them).
+      const unsigned int n_iface = iface_local.size();
+      for (unsigned int e = 0; e < n_iface; ++e)
+        {
+          iface_start[e] = u.local_element(iface_local[e]);
+          iface_next[e]  = u_next.local_element(iface_local[e]);
+        }
+      const auto relative = [&](const unsigned int         j,
+                                const std::vector<double> &x) {
         Tensor<1, 3> r;
-        for (const GapNode &node : rows[j])
-          for (unsigned int k = 0; k < 3; ++k)
-            r[k] += node.w * x.local_element(node.local[k]);
+        for (unsigned int e = row_start[j]; e < row_start[j + 1]; ++e)
+          {
+            const double *xn = x.data() + 3 * row_node[e];
+            for (unsigned int k = 0; k < 3; ++k)
+              r[k] += row_w[e] * xn[k];
+          }
         return r;
+      };
+      const auto active = [&](const unsigned int j) {
+        return row_start[j + 1] > row_start[j];
       };
       std::vector<Tensor<1, 3>> start(n_s);
       for (unsigned int j = 0; j < n_s; ++j)
-        if (!rows[j].empty())
-          start[j] = relative(j, u);
+        if (active(j))
+          start[j] = relative(j, iface_start);
 
       // Warm start: the multipliers of the previous step, applied.
       const auto apply = [&](const unsigned int j, const Tensor<1, 3> &dP) {
-        for (const GapNode &node : rows[j])
-          for (unsigned int k = 0; k < 3; ++k)
-            u_next.local_element(node.local[k]) +=
-              c * node.w * node.inverse_mass[k] * dP[k];
+        for (unsigned int e = row_start[j]; e < row_start[j + 1]; ++e)
+          {
+            double       *xn = iface_next.data() + 3 * row_node[e];
+            const double *im = iface_inverse_mass.data() + 3 * row_node[e];
+            for (unsigned int k = 0; k < 3; ++k)
+              xn[k] += c * row_w[e] * im[k] * dP[k];
+          }
       };
       for (unsigned int j = 0; j < n_s; ++j)
-        if (!rows[j].empty())
+        if (active(j))
           apply(j, multiplier[j]);
 
       unsigned int it     = 0;
@@ -464,10 +492,10 @@ namespace squeal
           double max_change = 0., max_value = 0.;
           for (unsigned int j = 0; j < n_s; ++j)
             {
-              if (rows[j].empty() || !(delassus[j] > 0.))
+              if (!active(j) || !(delassus[j] > 0.))
                 continue;
               const Tensor<1, 3> &nj = mortar->normals[j];
-              const Tensor<1, 3>  R  = relative(j, u_next);
+              const Tensor<1, 3>  R  = relative(j, iface_next);
               const double        g  = mortar->gap0[j] + nj * R;
               // slip of the slave against the master over the step
               Tensor<1, 3> s = -(R - start[j]) - dt * master_slide[j];
@@ -502,6 +530,9 @@ namespace squeal
             << "); raise Transient/Contact iterations or reduce the time step";
           throw std::runtime_error(msg.str());
         }
+      // u_{n+1} corrected on every interface entry, owned and ghost alike
+      for (unsigned int e = 0; e < n_iface; ++e)
+        u_next.local_element(iface_local[e]) = iface_next[e];
 
       // a_n = a*_n + M^-1 G^T Lambda_n, and the contact report.
       ContactStep &out = contact;
@@ -512,16 +543,19 @@ namespace squeal
       out.pgs_change                             = change;
       for (unsigned int j = 0; j < n_s; ++j)
         {
-          if (rows[j].empty())
+          if (!active(j))
             {
               out.status[j] = 0;
               ++out.n_separated;
               continue;
             }
-          for (const GapNode &node : rows[j])
+          for (unsigned int e = row_start[j]; e < row_start[j + 1]; ++e)
             for (unsigned int k = 0; k < 3; ++k)
-              a.local_element(node.local[k]) +=
-                node.w * node.inverse_mass[k] * multiplier[j][k];
+              {
+                const unsigned int ce = 3 * row_node[e] + k;
+                a.local_element(iface_local[ce]) +=
+                  row_w[e] * iface_inverse_mass[ce] * multiplier[j][k];
+              }
           const Tensor<1, 3> &nj     = mortar->normals[j];
           const double        z      = multiplier[j] * nj;
           const Tensor<1, 3>  lambda = multiplier[j] - z * nj;
@@ -531,7 +565,7 @@ namespace squeal
           out.force += -D * multiplier[j];
           out.normal_force += D * z;
           Tensor<1, 3> s =
-            -(relative(j, u_next) - start[j]) - dt * master_slide[j];
+            -(relative(j, iface_next) - start[j]) - dt * master_slide[j];
           s -= (s * nj) * nj;
           out.slip_velocity[j] = s.norm() / (D * dt);
           if (!(z > 0.))

@@ -333,19 +333,23 @@ namespace squeal
       void
       reinit_vectors();
 
-      /// one node of a slave node's weighted gap: its three DoFs as local
-      /// indices of the vectors' layout (ghosts included: no global-index
-      /// search per access), their inverse lumped masses [1/kg] (0 if
-      /// fixed) and its weight w [m^2]
-      struct GapNode
-      {
-        std::array<unsigned int, 3> local;
-        std::array<double, 3>       inverse_mass;
-        double                      w;
-      };
-      /// per slave node: the slave node (w = -D_jj) and its master nodes
-      /// (w = M_jl)
-      std::vector<std::vector<GapNode>> rows;
+      /// The interface in compact form, for the contact step's sweeps:
+      /// every node of a weighted gap (slave and master) once, its three
+      /// DoFs side by side (3 n_nodes entries), so that a sweep touches a
+      /// few tens of kB instead of the whole vectors.
+      /// local index of each compact entry in the vectors' layout (ghosts
+      /// included)
+      std::vector<unsigned int> iface_local;
+      /// inverse lumped mass of each compact entry [1/kg] (0 if fixed)
+      std::vector<double> iface_inverse_mass;
+      /// u_n and u_{n+1} on the compact entries [m], the step's scratch
+      std::vector<double> iface_start, iface_next;
+      /// slave node j's weighted gap in CSR form: its nodes are
+      /// row_node[row_start[j] .. row_start[j+1]) (compact node numbers)
+      /// with weights row_w [m^2]: the slave node (w = -D_jj) first, then
+      /// its master nodes (w = M_jl)
+      std::vector<unsigned int>         row_start, row_node;
+      std::vector<double>               row_w;
       std::vector<double>               delassus;     ///< sum w^2 / m per node
       std::vector<dealii::Tensor<1, 3>> master_slide; ///< sum M_jl V(x_l)
       std::vector<dealii::Tensor<1, 3>> multiplier;   ///< z n + lambda
