@@ -254,8 +254,12 @@ namespace squeal
       setup_probe(pair, pair_size);
 
       pcout << "Braking: " << n << " DoFs, " << mortar.n_slave()
-            << " slave-face nodes; point holds at (" << held_point[0] << ", "
-            << held_point[1] << ", " << held_point[2] << ") m\n"
+            << " slave-face nodes in " << dynamics->contact_groups().first
+            << (dynamics->contact_groups().second ?
+                  " independent groups, split among the ranks" :
+                  " independent group(s), solved by every rank")
+            << "; point holds at (" << held_point[0] << ", " << held_point[1]
+            << ", " << held_point[2] << ") m\n"
             << "Stability limit " << limit.critical << " s (largest frequency "
             << limit.omega_max / (2 * numbers::PI) << " Hz, "
             << limit.lanczos_steps << " Lanczos steps); time step "

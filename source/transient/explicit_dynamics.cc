@@ -3,6 +3,8 @@
 // projected Gauss-Seidel sweep over the interface nodes; the lumped mass
 // keeps every local contact problem a scalar one.
 
+#include <deal.II/base/array_view.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/precondition.h>
@@ -312,10 +314,78 @@ namespace squeal
         }
       iface_start.assign(iface_local.size(), 0.);
       iface_next.assign(iface_local.size(), 0.);
+      assign_contact_groups();
       contact.pressure.reinit(n_s);
       contact.slip_velocity.reinit(n_s);
       contact.traction.assign(n_s, Tensor<1, 3>());
       contact.status.assign(n_s, 0);
+    }
+
+    void
+    ExplicitDynamics::assign_contact_groups()
+    {
+      const unsigned int n_s     = multiplier.size();
+      const unsigned int n_nodes = iface_local.size() / 3;
+      const MPI_Comm     comm    = layout->get_mpi_communicator();
+      const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+      const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+      // groups: the connected components of the compact nodes, two nodes
+      // joined when one weighted gap holds both (union-find)
+      std::vector<unsigned int> parent(n_nodes);
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        parent[i] = i;
+      const auto root = [&](unsigned int i) {
+        while (parent[i] != i)
+          i = parent[i] = parent[parent[i]];
+        return i;
+      };
+      for (unsigned int j = 0; j < n_s; ++j)
+        for (unsigned int e = row_start[j] + 1; e < row_start[j + 1]; ++e)
+          {
+            const unsigned int a = root(row_node[row_start[j]]),
+                               b = root(row_node[e]);
+            if (a != b)
+              parent[std::max(a, b)] = std::min(a, b);
+          }
+      // each group's work (its weighted-gap entries), the groups in order
+      // of their first compact node
+      std::map<unsigned int, std::size_t> work;
+      for (unsigned int j = 0; j < n_s; ++j)
+        if (row_start[j + 1] > row_start[j])
+          work[root(row_node[row_start[j]])] += row_start[j + 1] - row_start[j];
+      n_groups      = work.size();
+      split_contact = n_ranks > 1 && n_groups > 1;
+      std::map<unsigned int, unsigned int> rank_of_group;
+      {
+        // largest group first to the least loaded rank (the same on every
+        // rank: the interface is replicated)
+        std::vector<std::pair<std::size_t, unsigned int>> by_work;
+        for (const auto &[g, w] : work)
+          by_work.emplace_back(w, g);
+        std::stable_sort(by_work.begin(),
+                         by_work.end(),
+                         [](const auto &x, const auto &y) {
+                           return x.first > y.first;
+                         });
+        std::vector<std::size_t> load(n_ranks, 0);
+        for (const auto &[w, g] : by_work)
+          {
+            const unsigned int r =
+              std::min_element(load.begin(), load.end()) - load.begin();
+            rank_of_group[g] = r;
+            load[r] += w;
+          }
+      }
+      own_slave.assign(n_s, 1);
+      own_entry.assign(iface_local.size(), 1);
+      if (!split_contact)
+        return;
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        for (unsigned int k = 0; k < 3; ++k)
+          own_entry[3 * i + k] = rank_of_group[root(i)] == rank;
+      for (unsigned int j = 0; j < n_s; ++j)
+        own_slave[j] = row_start[j + 1] > row_start[j] &&
+                       rank_of_group[root(row_node[row_start[j]])] == rank;
     }
 
     void
@@ -482,7 +552,7 @@ namespace squeal
           }
       };
       for (unsigned int j = 0; j < n_s; ++j)
-        if (active(j))
+        if (active(j) && own_slave[j])
           apply(j, multiplier[j]);
 
       unsigned int it     = 0;
@@ -492,7 +562,7 @@ namespace squeal
           double max_change = 0., max_value = 0.;
           for (unsigned int j = 0; j < n_s; ++j)
             {
-              if (!active(j) || !(delassus[j] > 0.))
+              if (!active(j) || !own_slave[j] || !(delassus[j] > 0.))
                 continue;
               const Tensor<1, 3> &nj = mortar->normals[j];
               const Tensor<1, 3>  R  = relative(j, iface_next);
@@ -515,6 +585,15 @@ namespace squeal
               max_change    = std::max(max_change, dP.norm());
               max_value     = std::max(max_value, P.norm());
             }
+          if (split_contact)
+            {
+              double local[2] = {max_change, max_value}, global[2];
+              Utilities::MPI::max(ArrayView<const double>(local, 2),
+                                  layout->get_mpi_communicator(),
+                                  ArrayView<double>(global, 2));
+              max_change = global[0];
+              max_value  = global[1];
+            }
           change = max_value > 0. ? max_change / max_value : 0.;
           if (change <= settings.pgs_tolerance)
             break;
@@ -529,6 +608,25 @@ namespace squeal
             << " iterations (tolerance " << settings.pgs_tolerance
             << "); raise Transient/Contact iterations or reduce the time step";
           throw std::runtime_error(msg.str());
+        }
+      if (split_contact)
+        {
+          // every compact entry and multiplier is this rank's or another
+          // single rank's: summing with zeros elsewhere copies it exactly
+          const unsigned int  n_mult = 3 * n_s;
+          std::vector<double> mine(n_iface + n_mult, 0.);
+          for (unsigned int e = 0; e < n_iface; ++e)
+            if (own_entry[e])
+              mine[e] = iface_next[e];
+          for (unsigned int j = 0; j < n_s; ++j)
+            if (own_slave[j])
+              for (unsigned int k = 0; k < 3; ++k)
+                mine[n_iface + 3 * j + k] = multiplier[j][k];
+          Utilities::MPI::sum(mine, layout->get_mpi_communicator(), mine);
+          std::copy(mine.begin(), mine.begin() + n_iface, iface_next.begin());
+          for (unsigned int j = 0; j < n_s; ++j)
+            for (unsigned int k = 0; k < 3; ++k)
+              multiplier[j][k] = mine[n_iface + 3 * j + k];
         }
       // u_{n+1} corrected on every interface entry, owned and ghost alike
       for (unsigned int e = 0; e < n_iface; ++e)

@@ -18,7 +18,8 @@ coarse size and degree 1:
   with the transversely isotropic friction material and the springs that
   join two bodies, equals the assembled matrix on a vector (1e-12, checked
   at set-up) and over the run: its contact forces equal the sparse run's
-  (1e-9 of the peak), and under mpirun -np 2 (1e-8).
+  (1e-9 of the peak), and under mpirun -np 2 (1e-8), where the two pads'
+  contact problems are solved on different ranks.
 Usage: check_brake.py SQUEAL WORK_DIR"""
 import csv
 import math
@@ -164,7 +165,10 @@ diff = float(line[0].split("relative difference ")[1].split(")")[0]) \
 check("braking: matrix-free product = assembled matrix (anisotropic, "
       "springs between bodies)", diff < 1e-12, line, show=True)
 _, sparse_forces = braking("braking_sparse", "sparse")
-_, mpi_forces = braking("braking_np2", "matrix-free", mpi=2)
+log_np2, mpi_forces = braking("braking_np2", "matrix-free", mpi=2)
+check("braking on two ranks: the two pads' contact groups split among them",
+      "in 2 independent groups, split among the ranks" in log_np2,
+      [l for l in log_np2.splitlines() if l.startswith("Braking:")])
 peak = max((abs(n) for n, _ in sparse_forces), default=0.)
 for label, forces, tol in (("matrix-free", free_forces, 1e-9),
                            ("np = 2", mpi_forces, 1e-8)):

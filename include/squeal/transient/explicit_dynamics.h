@@ -211,8 +211,15 @@ namespace squeal
        * Adds frictional contact on @p mortar (kept by reference; under MPI
        * every rank holds the whole interface, e.g. built on a
        * parallel::shared::Triangulation). Its DoFs become ghosts of every
-       * rank's vectors, and every rank solves the (small) Delassus problem
-       * redundantly, in the same order, so the multipliers agree on all.
+       * rank's vectors. The slave nodes fall into independent groups
+       * (connected through shared interface nodes: one per pad on a brake);
+       * with two or more groups and ranks, each rank sweeps the groups
+       * assigned to it (balanced by their weighted-gap entries) and the
+       * ranks exchange the results once per step; otherwise every rank
+       * solves the whole (small) Delassus problem. Either way each group is
+       * swept in the same order with the same convergence test (the
+       * largest change over all groups), so the multipliers are the same
+       * on every rank and for any number of ranks.
        * @param master_velocity rigid velocity of a master point [m/s] (the
        * disc's rotation omega e_z x x); empty: at rest
        */
@@ -279,6 +286,15 @@ namespace squeal
       {
         return contact;
       }
+      /**
+       * The independent groups of slave nodes of set_contact() (0 without
+       * contact) and whether their sweeps are split among the ranks.
+       */
+      std::pair<unsigned int, bool>
+      contact_groups() const
+      {
+        return {n_groups, split_contact};
+      }
       /** 1/2 v^T M v [J]. */
       double
       kinetic_energy() const;
@@ -333,6 +349,11 @@ namespace squeal
       void
       reinit_vectors();
 
+      /// groups the slave nodes of set_contact() and assigns them to the
+      /// ranks (split_contact, own_slave, own_entry)
+      void
+      assign_contact_groups();
+
       /// The interface in compact form, for the contact step's sweeps:
       /// every node of a weighted gap (slave and master) once, its three
       /// DoFs side by side (3 n_nodes entries), so that a sweep touches a
@@ -348,8 +369,15 @@ namespace squeal
       /// row_node[row_start[j] .. row_start[j+1]) (compact node numbers)
       /// with weights row_w [m^2]: the slave node (w = -D_jj) first, then
       /// its master nodes (w = M_jl)
-      std::vector<unsigned int>         row_start, row_node;
-      std::vector<double>               row_w;
+      std::vector<unsigned int> row_start, row_node;
+      std::vector<double>       row_w;
+      /// the contact step split among the ranks by independent groups of
+      /// slave nodes (see set_contact()); own_slave and own_entry flag the
+      /// slave nodes and compact entries this rank sweeps (all if not
+      /// split)
+      bool                              split_contact = false;
+      unsigned int                      n_groups      = 0;
+      std::vector<unsigned char>        own_slave, own_entry;
       std::vector<double>               delassus;     ///< sum w^2 / m per node
       std::vector<dealii::Tensor<1, 3>> master_slide; ///< sum M_jl V(x_l)
       std::vector<dealii::Tensor<1, 3>> multiplier;   ///< z n + lambda
