@@ -277,6 +277,7 @@ namespace squeal
       row_start.assign(1, 0);
       row_node.clear();
       row_w.clear();
+      row_cwim.clear();
       // The node's 3 x 3 Delassus block is c sum_k w_k^2 diag(1/m_k) (0 for
       // a fixed component); the local solve uses its largest entry, which
       // under-relaxes nodes with a fixed component and keeps the exact
@@ -297,6 +298,12 @@ namespace squeal
                     }
                 row_node.push_back(it->second);
                 row_w.push_back(w);
+                // c w / m of each component, in apply()'s order of
+                // multiplication
+                const double c = settings.time_step * settings.time_step *
+                                 (settings.beta2 + 0.5);
+                for (unsigned int k = 0; k < 3; ++k)
+                  row_cwim.push_back(c * w * inverse_mass[d[k]]);
                 delassus[j] += w * w *
                                std::max({inverse_mass[d[0]],
                                          inverse_mass[d[1]],
@@ -545,10 +552,10 @@ namespace squeal
       const auto apply = [&](const unsigned int j, const Tensor<1, 3> &dP) {
         for (unsigned int e = row_start[j]; e < row_start[j + 1]; ++e)
           {
-            double       *xn = iface_next.data() + 3 * row_node[e];
-            const double *im = iface_inverse_mass.data() + 3 * row_node[e];
+            double       *xn  = iface_next.data() + 3 * row_node[e];
+            const double *cwm = row_cwim.data() + 3 * e;
             for (unsigned int k = 0; k < 3; ++k)
-              xn[k] += c * row_w[e] * im[k] * dP[k];
+              xn[k] += cwm[k] * dP[k];
           }
       };
       for (unsigned int j = 0; j < n_s; ++j)

@@ -371,6 +371,9 @@ namespace squeal
       /// its master nodes (w = M_jl)
       std::vector<unsigned int> row_start, row_node;
       std::vector<double>       row_w;
+      /// per weighted-gap entry and component: dt^2 (beta2 + 1/2) w / m
+      /// [m^2 s^2/kg], the update of u_{n+1} per unit multiplier
+      std::vector<double> row_cwim;
       /// the contact step split among the ranks by independent groups of
       /// slave nodes (see set_contact()); own_slave and own_entry flag the
       /// slave nodes and compact entries this rank sweeps (all if not
