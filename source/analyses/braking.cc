@@ -241,6 +241,11 @@ namespace squeal
           as_text(tr.safety_factor) + " x the limit");
       dynamics = std::make_unique<ExplicitDynamics>(
         product, layout, mass, fixed, s, limit.critical);
+      if (tr.stiffness_product == "matrix-free")
+        dynamics->use_buffered_product(
+          {[this]() { return matrix_free->input_buffer(); },
+           [this]() { matrix_free->apply_buffers(); },
+           [this]() { return matrix_free->output_buffer(); }});
       const double omega = prm.interface.rotation_sense == "counterclockwise" ?
                              tr.angular_velocity :
                              -tr.angular_velocity;

@@ -170,6 +170,13 @@ namespace squeal
     ElasticityOperator::vmult(VectorType &dst, const VectorType &src) const
     {
       in.copy_locally_owned_data_from(src);
+      apply_buffers();
+      dst.copy_locally_owned_data_from(out);
+    }
+
+    void
+    ElasticityOperator::apply_buffers() const
+    {
       switch (degree)
         {
           case 1:
@@ -196,7 +203,6 @@ namespace squeal
           for (const LocalSpring &e : springs)
             out.local_element(e.row) += e.k * spring_values[e.column];
         }
-      dst.copy_locally_owned_data_from(out);
     }
 
   } // namespace transient

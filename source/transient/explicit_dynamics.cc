@@ -240,6 +240,16 @@ namespace squeal
     }
 
     void
+    ExplicitDynamics::use_buffered_product(
+      const BufferedStiffnessProduct &product)
+    {
+      if (!product.input || !product.apply || !product.output)
+        throw std::invalid_argument(
+          "a buffered stiffness product needs input, apply and output");
+      buffered_K = product;
+    }
+
+    void
     ExplicitDynamics::reinit_vectors()
     {
       for (auto *vec : {&u, &v, &a, &v_pred, &u_next, &work})
@@ -429,7 +439,8 @@ namespace squeal
         }
       {
         // v~_{n+1} = v~_n + dt a_n (after a step), then u_n + beta v~_n
-        double       *vp = v_pred.begin(), *w = work.begin();
+        double *vp       = v_pred.begin(),
+               *w        = buffered_K.apply ? buffered_K.input() : work.begin();
         const double *ua = u.begin(), *aa = a.begin();
         const double  beta = settings.beta;
         if (pending)
@@ -443,10 +454,14 @@ namespace squeal
             w[l] = ua[l] + beta * vp[l];
       }
       // a*_n = M^-1 (f_n - K (u_n + beta v~_n) - alpha M v~_n)
-      K(a, work);
+      if (buffered_K.apply)
+        buffered_K.apply();
+      else
+        K(a, work);
       const double c = dt * dt * (settings.beta2 + 0.5);
       {
         double       *aa = a.begin(), *un = u_next.begin();
+        const double *kw    = buffered_K.apply ? buffered_K.output() : aa;
         const auto    first = layout->local_range().first;
         const double *ua = u.begin(), *vp = v_pred.begin(),
                      *ff   = f.begin() + first,
@@ -456,7 +471,7 @@ namespace squeal
         // a fixed DoF: a = 0 and u_{n+1} = u_n exactly
         for (unsigned int l = 0; l < n; ++l)
           {
-            aa[l] = free[l] * ((ff[l] - aa[l]) * im[l] - alpha * vp[l]);
+            aa[l] = free[l] * ((ff[l] - kw[l]) * im[l] - alpha * vp[l]);
             // u_{n+1} = u_n + dt v_n + dt^2/2 a_n,
             // v_n = v~_n + dt beta2 a_n
             un[l] = ua[l] + free[l] * dt * vp[l] + free[l] * c * aa[l];

@@ -83,6 +83,25 @@ namespace squeal
       void
       vmult(VectorType &dst, const VectorType &src) const;
 
+      /** The product's own input vector: this rank's owned entries [m],
+       * in the order of its owned DoFs (n_locally_owned values). */
+      double *
+      input_buffer() const
+      {
+        return in.begin();
+      }
+      /** output_buffer() = K input_buffer() (vmult without its copies);
+       * collective under MPI. */
+      void
+      apply_buffers() const;
+      /** The product's own output vector: this rank's owned entries [N]
+       * after apply_buffers(). */
+      const double *
+      output_buffer() const
+      {
+        return out.begin();
+      }
+
     private:
       template <int degree>
       void

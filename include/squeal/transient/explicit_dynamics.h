@@ -72,6 +72,20 @@ namespace squeal
       std::function<void(DistributedVector &, const DistributedVector &)>;
 
     /**
+     * A stiffness product on buffers of its own (ElasticityOperator's):
+     * the caller writes src's locally owned entries [m] to input(), in the
+     * order of the owned DoFs, calls apply(), and reads (K src)'s owned
+     * entries [N] from output(). A time step then needs no copies of its
+     * vectors in and out of the product's.
+     */
+    struct BufferedStiffnessProduct
+    {
+      std::function<double *()>       input;
+      std::function<void()>           apply;
+      std::function<const double *()> output;
+    };
+
+    /**
      * The lumped (diagonal) mass of an FE_Q^3 field [kg per DoF]: the
      * consistent mass integrated with the Gauss-Lobatto rule on the element's
      * nodes (degree + 1 points per direction), which is diagonal and positive
@@ -208,6 +222,15 @@ namespace squeal
         double                        dt_critical);
 
       /**
+       * Makes step() compute K (u_n + beta v~_n) through @p product's
+       * buffers instead of the StiffnessProduct of the constructor (the
+       * same product, which the energies keep using). @p product's owned
+       * entries must be this integrator's partitioner's.
+       */
+      void
+      use_buffered_product(const BufferedStiffnessProduct &product);
+
+      /**
        * Adds frictional contact on @p mortar (kept by reference; under MPI
        * every rank holds the whole interface, e.g. built on a
        * parallel::shared::Triangulation). Its DoFs become ghosts of every
@@ -326,6 +349,7 @@ namespace squeal
       solve_contact();
 
       StiffnessProduct                                           K;
+      BufferedStiffnessProduct                                   buffered_K;
       std::shared_ptr<const dealii::Utilities::MPI::Partitioner> layout;
       /// 1 / m per DoF [1/kg], 0 on fixed DoFs (n_dofs, every rank)
       dealii::Vector<double> inverse_mass;
