@@ -258,11 +258,11 @@ namespace squeal
 
       setup_probe(pair, pair_size);
 
+      const auto [n_groups, split] = dynamics->contact_groups();
       pcout << "Braking: " << n << " DoFs, " << mortar.n_slave()
-            << " slave-face nodes in " << dynamics->contact_groups().first
-            << (dynamics->contact_groups().second ?
-                  " independent groups, split among the ranks" :
-                  " independent group(s), solved by every rank")
+            << " slave-face nodes in " << n_groups
+            << (split ? " independent groups, split among the ranks" :
+                        " independent group(s), solved by every rank")
             << "; point holds at (" << held_point[0] << ", " << held_point[1]
             << ", " << held_point[2] << ") m\n"
             << "Stability limit " << limit.critical << " s (largest frequency "

@@ -292,6 +292,7 @@ namespace squeal
       // a fixed component); the local solve uses its largest entry, which
       // under-relaxes nodes with a fixed component and keeps the exact
       // local solution elsewhere (the fixed point is the same).
+      const double                                    c = increment_factor();
       std::map<types::global_dof_index, unsigned int> compact_node;
       for (unsigned int j = 0; j < n_s; ++j)
         {
@@ -310,8 +311,6 @@ namespace squeal
                 row_w.push_back(w);
                 // c w / m of each component, in apply()'s order of
                 // multiplication
-                const double c = settings.time_step * settings.time_step *
-                                 (settings.beta2 + 0.5);
                 for (unsigned int k = 0; k < 3; ++k)
                   row_cwim.push_back(c * w * inverse_mass[d[k]]);
                 delassus[j] += w * w *
@@ -393,8 +392,10 @@ namespace squeal
             load[r] += w;
           }
       }
-      own_slave.assign(n_s, 1);
       own_entry.assign(iface_local.size(), 1);
+      own_slave.resize(n_s);
+      for (unsigned int j = 0; j < n_s; ++j)
+        own_slave[j] = row_start[j + 1] > row_start[j];
       if (!split_contact)
         return;
       for (unsigned int i = 0; i < n_nodes; ++i)
@@ -458,7 +459,7 @@ namespace squeal
         buffered_K.apply();
       else
         K(a, work);
-      const double c = dt * dt * (settings.beta2 + 0.5);
+      const double c = increment_factor();
       {
         double       *aa = a.begin(), *un = u_next.begin();
         const double *kw    = buffered_K.apply ? buffered_K.output() : aa;
@@ -525,7 +526,7 @@ namespace squeal
     ExplicitDynamics::solve_contact()
     {
       const double       dt  = settings.time_step;
-      const double       c   = dt * dt * (settings.beta2 + 0.5);
+      const double       c   = increment_factor();
       const double       mu  = settings.friction_coefficient;
       const unsigned int n_s = multiplier.size();
       // R_j(x) = sum_k w_k x_k: weighted motion of the master against the
@@ -574,7 +575,7 @@ namespace squeal
           }
       };
       for (unsigned int j = 0; j < n_s; ++j)
-        if (active(j) && own_slave[j])
+        if (own_slave[j])
           apply(j, multiplier[j]);
 
       unsigned int it     = 0;
@@ -584,7 +585,7 @@ namespace squeal
           double max_change = 0., max_value = 0.;
           for (unsigned int j = 0; j < n_s; ++j)
             {
-              if (!active(j) || !own_slave[j] || !(delassus[j] > 0.))
+              if (!own_slave[j] || !(delassus[j] > 0.))
                 continue;
               const Tensor<1, 3> &nj = mortar->normals[j];
               const Tensor<1, 3>  R  = relative(j, iface_next);
@@ -635,8 +636,8 @@ namespace squeal
         {
           // every compact entry and multiplier is this rank's or another
           // single rank's: summing with zeros elsewhere copies it exactly
-          const unsigned int  n_mult = 3 * n_s;
-          std::vector<double> mine(n_iface + n_mult, 0.);
+          std::vector<double> &mine = iface_exchange;
+          mine.assign(n_iface + 3 * n_s, 0.);
           for (unsigned int e = 0; e < n_iface; ++e)
             if (own_entry[e])
               mine[e] = iface_next[e];

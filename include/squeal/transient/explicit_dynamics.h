@@ -373,6 +373,14 @@ namespace squeal
       void
       reinit_vectors();
 
+      /// dt^2 (beta2 + 1/2) [s^2]: the change of u_{n+1} per unit change
+      /// of M^-1 times a force
+      double
+      increment_factor() const
+      {
+        return settings.time_step * settings.time_step * (settings.beta2 + 0.5);
+      }
+
       /// groups the slave nodes of set_contact() and assigns them to the
       /// ranks (split_contact, own_slave, own_entry)
       void
@@ -400,11 +408,14 @@ namespace squeal
       std::vector<double> row_cwim;
       /// the contact step split among the ranks by independent groups of
       /// slave nodes (see set_contact()); own_slave and own_entry flag the
-      /// slave nodes and compact entries this rank sweeps (all if not
-      /// split)
-      bool                              split_contact = false;
-      unsigned int                      n_groups      = 0;
-      std::vector<unsigned char>        own_slave, own_entry;
+      /// slave nodes (with a weighted gap) and compact entries this rank
+      /// sweeps (all if not split)
+      bool                       split_contact = false;
+      unsigned int               n_groups      = 0;
+      std::vector<unsigned char> own_slave, own_entry;
+      /// scratch of the split contact step's exchange (the compact entries,
+      /// then 3 multiplier components per slave node)
+      std::vector<double>               iface_exchange;
       std::vector<double>               delassus;     ///< sum w^2 / m per node
       std::vector<dealii::Tensor<1, 3>> master_slide; ///< sum M_jl V(x_l)
       std::vector<dealii::Tensor<1, 3>> multiplier;   ///< z n + lambda
