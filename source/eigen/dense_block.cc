@@ -63,6 +63,23 @@ namespace squeal
                     "PCFactorSetMatSolverType");
       }
 
+      void
+      add_scaled(PETScMatrix &A, const double a, const PETScMatrix &B)
+      {
+        const auto stored = [](const PETScMatrix &X) {
+          MatInfo info;
+          MatGetInfo(X, MAT_GLOBAL_SUM, &info);
+          return info.nz_used;
+        };
+        check_petsc(MatAXPY(A,
+                            a,
+                            B,
+                            stored(A) == stored(B) ? SAME_NONZERO_PATTERN :
+                                                     DIFFERENT_NONZERO_PATTERN),
+                    "sparse matrices",
+                    "MatAXPY");
+      }
+
       void *
       shift_invert_with_mumps(void *st_handle, const bool cholesky)
       {

@@ -87,6 +87,17 @@ namespace squeal
       check_petsc(const int ierr, const char *who, const char *what);
 
       /**
+       * A += a B (n x n each): on A's pattern when B stores as many entries
+       * (the combinations of one model's parts all copy the first part's
+       * pattern), PETSc's MatAXPY with SAME_NONZERO_PATTERN; else with a
+       * new pattern. deal.II's add() always builds a new pattern (7 s for
+       * one K - sigma M at degree 4 on the TriboBrake).
+       * @throws std::runtime_error if PETSc fails.
+       */
+      void
+      add_scaled(PETScMatrix &A, double a, const PETScMatrix &B);
+
+      /**
        * Makes the PETSc KSP @p ksp (cast to void*) a direct solve: one
        * application (KSPPREONLY) of a MUMPS factorisation, Cholesky when
        * @p cholesky (a symmetric matrix) else LU.

@@ -481,7 +481,7 @@ namespace squeal
       for (const double sigma : sigmas)
         {
           A.copy_from(K);
-          A.add(-sigma, M);
+          internal::add_scaled(A, -sigma, M);
           if (!symbolic)
             check(MatCholeskyFactorSymbolic(F, A, rows, &info),
                   "MatCholeskyFactorSymbolic (MUMPS LDL^T)");
@@ -739,7 +739,7 @@ namespace squeal
           const double w = 2. * numbers::PI * f_shift;
           A.reinit(K_s);
           A.copy_from(K_s);
-          A.add(-w * w, M);
+          internal::add_scaled(A, -w * w, M);
           const DirectSolver solver(A, true);
           r.factorisation_seconds += seconds_since(t_factor);
           ++r.factorisations;
@@ -811,7 +811,7 @@ namespace squeal
           solver.reset();
           model.symmetric_stiffness(point, P);
           const double w_t = 2. * numbers::PI * band.target_frequency;
-          P.add(w_t * w_t, M);
+          internal::add_scaled(P, w_t * w_t, M);
           solver = std::make_unique<DirectSolver>(P, true);
           key    = k;
           ++n_factorisations;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace squeal
 {
@@ -132,6 +133,133 @@ namespace squeal
     // frequencies. Lumped (explicit dynamics): the Gauss-Lobatto rule on the
     // face's FE_Q support points, a diagonal that changes with the node
     // spacing.
+    std::vector<std::pair<DoFHandler<3>::active_cell_iterator, unsigned int>>
+    StructuralModel::spring_faces(const scene::SpringSet &s) const
+    {
+      std::vector<std::pair<DoFHandler<3>::active_cell_iterator, unsigned int>>
+        faces;
+      if (!(s.radius > 0.) || s.to_body)
+        return faces;
+      if (s.station_normals.size() != s.stations.size())
+        throw std::runtime_error("springs '" + s.name +
+                                 "': one face normal per station needed");
+      const auto off_plane = [&](const Point<3> &x, const unsigned int i) {
+        return std::abs((x - s.stations[i]) * s.station_normals[i]);
+      };
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() && cell->material_id() == s.body)
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+              {
+                const auto   face   = cell->face(f);
+                const double h      = face->diameter();
+                const auto   centre = face->center();
+                for (unsigned int i = 0; i < s.stations.size(); ++i)
+                  if (off_plane(centre, i) < s.tolerance &&
+                      centre.distance(s.stations[i]) < s.radius + h / 2)
+                    {
+                      faces.emplace_back(cell, f);
+                      break;
+                    }
+              }
+      return faces;
+    }
+
+    void
+    StructuralModel::add_spring_sparsity(const scene::SpringSet &s,
+                                         DynamicSparsityPattern &dsp) const
+    {
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      if (s.to_body)
+        for (const auto &pair : two_body_spring_nodes(s))
+          {
+            std::vector<types::global_dof_index> d(pair.begin(), pair.end());
+            constraints.add_entries_local_to_global(d, dsp, false);
+          }
+      else
+        for (const auto &[cell, f] : spring_faces(s))
+          {
+            cell->get_dof_indices(dofs);
+            constraints.add_entries_local_to_global(dofs, dsp, false);
+          }
+    }
+
+    // The points of the face rule @p q2 (unit coordinates of face @p f,
+    // made of n_sub x n_sub equal sub-squares) that may lie within the
+    // attachment radius of a station of @p s, in their order in @p q2: a
+    // sub-square is dropped when each of its corners is farther from every
+    // station, in the station's plane, than the radius plus twice the
+    // largest distance between its mapped corners (the in-plane distance
+    // changes no faster than the point moves). The dropped points have a
+    // bell weight of zero, so the rule is the same; the iterated rule
+    // reaches 10^5 points on a face, a few hundred of them under a bell.
+    Quadrature<2>
+    StructuralModel::near_a_station(
+      const DoFHandler<3>::active_cell_iterator &cell,
+      const unsigned int                         f,
+      const Quadrature<2>                       &q2,
+      const unsigned int                         n_sub,
+      const scene::SpringSet                    &s) const
+    {
+      if (n_sub <= 2)
+        return q2;
+      std::vector<Point<2>> corners;
+      for (unsigned int j = 0; j <= n_sub; ++j)
+        for (unsigned int i = 0; i <= n_sub; ++i)
+          corners.emplace_back(double(i) / n_sub, double(j) / n_sub);
+      FEValues<3> at_corners(
+        mapping,
+        fe,
+        QProjector<3>::project_to_face(ReferenceCells::Hexahedron,
+                                       Quadrature<2>(corners),
+                                       f),
+        update_quadrature_points);
+      at_corners.reinit(cell);
+      const auto corner = [&](const unsigned int i, const unsigned int j) {
+        return at_corners.quadrature_point(j * (n_sub + 1) + i);
+      };
+      // in-plane distance of x from station k
+      const auto in_plane = [&](const Point<3> &x, const unsigned int k) {
+        const Tensor<1, 3> d = x - s.stations[k];
+        return (d - (d * s.station_normals[k]) * s.station_normals[k]).norm();
+      };
+      std::vector<bool> kept(n_sub * n_sub, false);
+      for (unsigned int j = 0; j < n_sub; ++j)
+        for (unsigned int i = 0; i < n_sub; ++i)
+          {
+            const std::array<Point<3>, 4> c{{corner(i, j),
+                                             corner(i + 1, j),
+                                             corner(i, j + 1),
+                                             corner(i + 1, j + 1)}};
+            double                        size = 0.;
+            for (const Point<3> &x : c)
+              for (const Point<3> &y : c)
+                size = std::max(size, x.distance(y));
+            for (unsigned int k = 0;
+                 k < s.stations.size() && !kept[j * n_sub + i];
+                 ++k)
+              for (const Point<3> &x : c)
+                if (in_plane(x, k) < s.radius + 2. * size)
+                  kept[j * n_sub + i] = true;
+          }
+      std::vector<Point<2>> points;
+      std::vector<double>   weights;
+      for (unsigned int q = 0; q < q2.size(); ++q)
+        {
+          const Point<2>    &x = q2.point(q);
+          const unsigned int i =
+            std::min(n_sub - 1, static_cast<unsigned int>(x[0] * n_sub));
+          const unsigned int j =
+            std::min(n_sub - 1, static_cast<unsigned int>(x[1] * n_sub));
+          if (kept[j * n_sub + i])
+            {
+              points.push_back(x);
+              weights.push_back(q2.weight(q));
+            }
+        }
+      return Quadrature<2>(points, weights);
+    }
+
     std::vector<StructuralModel::SpringFaceRule>
     StructuralModel::spring_face_rules(
       const scene::SpringSet    &s,
@@ -154,84 +282,72 @@ namespace squeal
         const double r = std::hypot(std::hypot(v[0], v[1]), v[2]);
         return r < a ? 0.5 * (1. + std::cos(numbers::PI * r / a)) : 0.;
       };
-      const unsigned int n = fe.n_dofs_per_cell();
-      // a boundary face of the body on some station's plane
-      const auto on_side_face = [&](const auto &cell, const unsigned int f) {
-        if (!cell->is_locally_owned() || cell->material_id() != s.body ||
-            !cell->face(f)->at_boundary())
-          return false;
-        for (unsigned int i = 0; i < stations.size(); ++i)
-          if (off_plane(cell->face(f)->center(), i) < s.tolerance)
-            return true;
-        return false;
-      };
+      const unsigned int          n = fe.n_dofs_per_cell();
       std::vector<SpringFaceRule> rules;
       const QGauss<1>             gauss(fe.degree + 1);
-      if (a > 0)
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          for (const auto f : cell->face_indices())
-            if (on_side_face(cell, f))
-              {
-                const auto   face = cell->face(f);
-                const double h    = face->diameter();
-                bool         near = false;
-                for (unsigned int i = 0; i < stations.size(); ++i)
-                  near =
-                    near || (off_plane(face->center(), i) < s.tolerance &&
-                             face->center().distance(stations[i]) < a + h / 2);
-                if (!near)
-                  continue;
-                // the face must be a parallelogram (weights = unit weights
-                // times its area)
-                const Tensor<1, 3> d = face->vertex(0) + face->vertex(3) -
-                                       face->vertex(1) - face->vertex(2);
-                if (!(d.norm() < 1e-9 * h))
-                  throw std::runtime_error(
-                    "springs '" + s.name +
-                    "': a face they spread over is "
-                    "not a parallelogram; set their attachment radius to 0 "
-                    "(point springs) or remesh the face");
-                const Quadrature<2> q2 =
-                  lumped_springs ?
-                    Quadrature<2>(QGaussLobatto<2>(fe.degree + 1)) :
-                    Quadrature<2>(
-                      QIterated<2>(gauss,
-                                   std::min(200u,
-                                            static_cast<unsigned int>(
-                                              std::ceil(6. * h / a)))));
-                const Quadrature<3> q3 =
-                  QProjector<3>::project_to_face(ReferenceCells::Hexahedron,
-                                                 q2,
-                                                 f);
-                SpringFaceRule    rule;
-                std::vector<bool> touched(stations.size(), false);
-                rule.cell = cell;
-                for (unsigned int q = 0; q < q3.size(); ++q)
+      for (const auto &[cell, f] : spring_faces(s))
+        {
+          const auto   face = cell->face(f);
+          const double h    = face->diameter();
+          // the face must be a parallelogram (weights = unit weights
+          // times its area)
+          const Tensor<1, 3> d = face->vertex(0) + face->vertex(3) -
+                                 face->vertex(1) - face->vertex(2);
+          if (!(d.norm() < 1e-9 * h))
+            throw std::runtime_error(
+              "springs '" + s.name +
+              "': a face they spread over is "
+              "not a parallelogram; set their attachment radius to 0 "
+              "(point springs) or remesh the face");
+          const unsigned int n_sub =
+            lumped_springs ?
+              1u :
+              std::min(200u, static_cast<unsigned int>(std::ceil(6. * h / a)));
+          const Quadrature<2> q2 =
+            near_a_station(cell,
+                           f,
+                           lumped_springs ?
+                             Quadrature<2>(QGaussLobatto<2>(fe.degree + 1)) :
+                             Quadrature<2>(QIterated<2>(gauss, n_sub)),
+                           n_sub,
+                           s);
+          const Quadrature<3> q3 =
+            QProjector<3>::project_to_face(ReferenceCells::Hexahedron, q2, f);
+          SpringFaceRule    rule;
+          std::vector<bool> touched(stations.size(), false);
+          rule.cell = cell;
+          // the real points of the whole rule from one evaluation of
+          // the cell's mapping (not one per point)
+          std::optional<FEValues<3>> points;
+          if (q3.size() > 0)
+            {
+              points.emplace(mapping, fe, q3, update_quadrature_points);
+              points->reinit(cell);
+            }
+          for (unsigned int q = 0; q < q3.size(); ++q)
+            {
+              const Point<3> &x = points->quadrature_point(q);
+              std::vector<std::pair<unsigned int, double>> w;
+              for (unsigned int i = 0; i < stations.size(); ++i)
+                if (const double b = bell(x, i); b > 0.)
                   {
-                    const Point<3> x =
-                      mapping.transform_unit_to_real_cell(cell, q3.point(q));
-                    std::vector<std::pair<unsigned int, double>> w;
-                    for (unsigned int i = 0; i < stations.size(); ++i)
-                      if (const double b = bell(x, i); b > 0.)
-                        {
-                          w.emplace_back(i, b * q3.weight(q) * face->measure());
-                          total[i] += w.back().second;
-                          touched[i] = true;
-                        }
-                    if (w.empty())
-                      continue;
-                    rule.unit.push_back(q3.point(q));
-                    rule.weights.push_back(std::move(w));
+                    w.emplace_back(i, b * q3.weight(q) * face->measure());
+                    total[i] += w.back().second;
+                    touched[i] = true;
                   }
-                for (unsigned int i = 0; i < stations.size(); ++i)
-                  faces_per_spring[i] += touched[i];
-                for (unsigned int k = 0; k < n; ++k)
-                  if (s.direction[fe.system_to_component_index(k).first] !=
-                        0. &&
-                      fe.has_support_on_face(k, f))
-                    rule.shapes.push_back(k);
-                rules.push_back(std::move(rule));
-              }
+              if (w.empty())
+                continue;
+              rule.unit.push_back(q3.point(q));
+              rule.weights.push_back(std::move(w));
+            }
+          for (unsigned int i = 0; i < stations.size(); ++i)
+            faces_per_spring[i] += touched[i];
+          for (unsigned int k = 0; k < n; ++k)
+            if (s.direction[fe.system_to_component_index(k).first] != 0. &&
+                fe.has_support_on_face(k, f))
+              rule.shapes.push_back(k);
+          rules.push_back(std::move(rule));
+        }
       return rules;
     }
 

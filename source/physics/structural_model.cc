@@ -585,7 +585,9 @@ namespace squeal
       for (const scene::SpringSet &springs : scene->springs)
         {
           const std::string k = springs.name + ".k";
-          PETScMatrix      &K = new_part_matrix();
+          PETScMatrix &K = new_part_matrix([&](DynamicSparsityPattern &dsp) {
+            add_spring_sparsity(springs, dsp);
+          });
           add_springs(springs, K, reference_of(k), pcout);
           compact(K);
           parts.parts.push_back({&K,
@@ -602,12 +604,15 @@ namespace squeal
         {
           const scene::ContactPair &pair = scene->contact_pairs[i];
           const std::string k_n = pair.name + ".k_n", k_t = pair.name + ".k_t";
-          PETScMatrix      &Kn = new_part_matrix(), &Kt = new_part_matrix();
+          const auto        own = [&](DynamicSparsityPattern &dsp) {
+            add_interface_sparsity(pair_points[i], constraints, dsp);
+          };
+          PETScMatrix &Kn = new_part_matrix(own), &Kt = new_part_matrix(own);
           // the shear part only where it is or may become nonzero: else it
           // would add an empty term to every product
           PETScMatrix *Kst = pair.tangential_stiffness > 0. || !varied ||
                                  varied->count(k_t) > 0 ?
-                               &new_part_matrix() :
+                               &new_part_matrix(own) :
                                nullptr;
           assemble_interface(pair_points[i],
                              constraints,
@@ -683,13 +688,28 @@ namespace squeal
     }
 
     PETScMatrix &
-    StructuralModel::new_part_matrix()
+    StructuralModel::new_part_matrix(
+      const std::function<void(DynamicSparsityPattern &)> &own)
     {
       // reused across refinements, so that earlier parts() stay valid
       if (next_part == part_matrices.size())
         part_matrices.push_back(std::make_unique<PETScMatrix>());
       PETScMatrix &m = *part_matrices[next_part++];
-      m.reinit(*part_template);
+      if (!own)
+        {
+          m.reinit(*part_template);
+          return m;
+        }
+      DynamicSparsityPattern dsp(locally_relevant_dofs);
+      own(dsp);
+      // every owned row keeps its diagonal (see store_nonzeros_only)
+      for (const auto i : locally_owned_dofs)
+        dsp.add(i, i);
+      SparsityTools::distribute_sparsity_pattern(dsp,
+                                                 locally_owned_dofs,
+                                                 comm,
+                                                 locally_relevant_dofs);
+      m.reinit(locally_owned_dofs, locally_owned_dofs, dsp, comm);
       return m;
     }
 

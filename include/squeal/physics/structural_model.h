@@ -427,9 +427,25 @@ namespace squeal
       /// @throws std::runtime_error if a body has no node
       std::vector<std::array<dealii::types::global_dof_index, 6>>
       two_body_spring_nodes(const scene::SpringSet &s) const;
-      /// a new zero part matrix on the common pattern
+      /// a new zero part matrix: on the common pattern, or, given @p own,
+      /// on the entries @p own adds to an empty pattern of the locally
+      /// relevant rows and the diagonal of every owned row (a part of a
+      /// few hundred rows: a copy of the common pattern costs a whole
+      /// matrix of memory writes, 1.3 GB at degree 4 on the TriboBrake)
       PETScMatrix &
-      new_part_matrix();
+      new_part_matrix(
+        const std::function<void(dealii::DynamicSparsityPattern &)> &own = {});
+      /// the boundary faces of body s.body on a station's plane within the
+      /// attachment radius plus half the face's diameter of the station
+      /// (locally owned cells; the faces spread springs of @p s may touch)
+      std::vector<
+        std::pair<dealii::DoFHandler<3>::active_cell_iterator, unsigned int>>
+      spring_faces(const scene::SpringSet &s) const;
+      /// adds to @p dsp the entries of the spring set @p s (its faces'
+      /// cells, the node pairs of springs between bodies), condensed
+      void
+      add_spring_sparsity(const scene::SpringSet         &s,
+                          dealii::DynamicSparsityPattern &dsp) const;
       /// the common sparsity pattern of every part
       std::unique_ptr<dealii::DynamicSparsityPattern> pattern;
       /// an empty PETSc matrix on that pattern, duplicated for each part
@@ -449,6 +465,15 @@ namespace squeal
       spring_face_rules(const scene::SpringSet    &s,
                         std::vector<double>       &total,
                         std::vector<unsigned int> &faces_per_spring) const;
+      /// the points of the face rule @p q2 on face @p f of @p cell (n_sub x
+      /// n_sub sub-squares) that may lie under a bell of @p s (see
+      /// springs.cc), in their order
+      dealii::Quadrature<2>
+      near_a_station(const dealii::DoFHandler<3>::active_cell_iterator &cell,
+                     unsigned int                                       f,
+                     const dealii::Quadrature<2>                       &q2,
+                     unsigned int                                       n_sub,
+                     const scene::SpringSet &s) const;
       /// the Winkler layers of @p rules into @p K at @p k per spring, each
       /// spring's bell normalised by its @p total
       void
