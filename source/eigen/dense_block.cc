@@ -75,6 +75,7 @@ namespace squeal
                             a,
                             B,
                             stored(A) == stored(B) ? SAME_NONZERO_PATTERN :
+                            stored(A) > stored(B)  ? SUBSET_NONZERO_PATTERN :
                                                      DIFFERENT_NONZERO_PATTERN),
                     "sparse matrices",
                     "MatAXPY");
@@ -88,6 +89,33 @@ namespace squeal
         check_petsc(STSetType(st, STSINVERT), "shift-and-invert", "STSetType");
         check_petsc(STGetKSP(st, &ksp), "shift-and-invert", "STGetKSP");
         use_mumps(ksp, cholesky);
+        // A - sigma B on A's pattern when B's is the same or within it
+        // (one model's combinations, or its mass on its own nonzeros)
+        PetscInt n_matrices = 0;
+        check_petsc(STGetNumMatrices(st, &n_matrices),
+                    "shift-and-invert",
+                    "STGetNumMatrices");
+        if (n_matrices == 2)
+          {
+            Mat A, B;
+            check_petsc(STGetMatrix(st, 0, &A),
+                        "shift-and-invert",
+                        "STGetMatrix");
+            check_petsc(STGetMatrix(st, 1, &B),
+                        "shift-and-invert",
+                        "STGetMatrix");
+            MatInfo a, b;
+            MatGetInfo(A, MAT_GLOBAL_SUM, &a);
+            MatGetInfo(B, MAT_GLOBAL_SUM, &b);
+            check_petsc(STSetMatStructure(st,
+                                          a.nz_used == b.nz_used ?
+                                            SAME_NONZERO_PATTERN :
+                                          a.nz_used > b.nz_used ?
+                                            SUBSET_NONZERO_PATTERN :
+                                            DIFFERENT_NONZERO_PATTERN),
+                        "shift-and-invert",
+                        "STSetMatStructure");
+          }
         return ksp;
       }
 

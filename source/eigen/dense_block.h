@@ -89,8 +89,10 @@ namespace squeal
       /**
        * A += a B (n x n each): on A's pattern when B stores as many entries
        * (the combinations of one model's parts all copy the first part's
-       * pattern), PETSc's MatAXPY with SAME_NONZERO_PATTERN; else with a
-       * new pattern. deal.II's add() always builds a new pattern (7 s for
+       * pattern) or fewer (B on its own nonzeros within A's pattern, as the
+       * full solver's mass matrix), PETSc's MatAXPY with
+       * SAME_NONZERO_PATTERN or SUBSET_NONZERO_PATTERN; else with a new
+       * pattern. deal.II's add() always builds a new pattern (7 s for
        * one K - sigma M at degree 4 on the TriboBrake).
        * @throws std::runtime_error if PETSc fails.
        */
@@ -110,7 +112,9 @@ namespace squeal
        * Makes the SLEPc spectral transformation @p st (an ST cast to
        * void*) shift-and-invert with a direct MUMPS factorisation, Cholesky
        * for a symmetric pencil (@p cholesky) else LU, applied once per
-       * iteration (KSPPREONLY).
+       * iteration (KSPPREONLY). Call it after EPSSetOperators: A - sigma B
+       * is then formed on A's pattern when B's is the same or within it
+       * (B storing as many or fewer entries).
        * @return its KSP (cast to void*), which the ST owns
        * @throws std::runtime_error if SLEPc or PETSc fails.
        */

@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <squeal/eigen/reduced_model.h>
+#include <squeal/physics/structural_model.h>
 
 #include <petscmat.h>
 
@@ -61,6 +62,7 @@ namespace squeal
       comm  = model.matrix(0).get_mpi_communicator();
       owned = model.matrix(0).locally_owned_range_indices();
       model.mass(model.reference, M_ref);
+      physics::store_nonzeros_only(M_ref, owned, comm);
       const unsigned int n_parts = model.size();
       active.assign(n_parts, false);
       rows.assign(n_parts, std::vector<int>());
@@ -97,6 +99,8 @@ namespace squeal
           PETScMatrix K, M;
           model.symmetric_stiffness(s, K);
           model.mass(s, M);
+          // on its nonzeros: the eigensolver multiplies by M some 600 times
+          physics::store_nonzeros_only(M, owned, comm);
           pcout << "  reduced basis: sample " << i + 1 << " of "
                 << samples.size() << std::endl;
           const auto modes =

@@ -66,13 +66,6 @@ namespace squeal
           ST st;
           check_eps(EPSGetST(eps, &st), "EPSGetST");
           ksp = static_cast<KSP>(internal::shift_invert_with_mumps(st, true));
-          // K - sigma M on K's pattern (both copy the model's first part's)
-          check_eps(STSetMatStructure(st,
-                                      K.n_nonzero_elements() ==
-                                          M.n_nonzero_elements() ?
-                                        SAME_NONZERO_PATTERN :
-                                        DIFFERENT_NONZERO_PATTERN),
-                    "STSetMatStructure");
           check_eps(EPSSetFromOptions(eps), "EPSSetFromOptions");
         }
 
