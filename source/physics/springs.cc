@@ -9,6 +9,7 @@
 #include <squeal/physics/structural_model.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -123,16 +124,6 @@ namespace squeal
       std::vector<unsigned int>                                 shapes;
     };
 
-    // Each spring spread over the disc of the body's face within the
-    // attachment radius of its station, with cosine-bell weights normalised
-    // to the spring's stiffness: a Winkler layer of stiffness density
-    // k bell(x) / int(bell) [N/m^3] along the spring's direction. Consistent
-    // (default): integrated exactly enough by composite Gauss rules of
-    // sub-intervals a / 6 on every face the bell touches, so the model is
-    // the same on every mesh and degree and a finer space can only lower its
-    // frequencies. Lumped (explicit dynamics): the Gauss-Lobatto rule on the
-    // face's FE_Q support points, a diagonal that changes with the node
-    // spacing.
     std::vector<std::pair<DoFHandler<3>::active_cell_iterator, unsigned int>>
     StructuralModel::spring_faces(const scene::SpringSet &s) const
     {
@@ -260,6 +251,16 @@ namespace squeal
       return Quadrature<2>(points, weights);
     }
 
+    // Each spring spread over the disc of the body's face within the
+    // attachment radius of its station, with cosine-bell weights normalised
+    // to the spring's stiffness: a Winkler layer of stiffness density
+    // k bell(x) / int(bell) [N/m^3] along the spring's direction. Consistent
+    // (default): integrated exactly enough by composite Gauss rules of
+    // sub-intervals a / 6 on every face the bell touches, so the model is
+    // the same on every mesh and degree and a finer space can only lower its
+    // frequencies. Lumped (explicit dynamics): the Gauss-Lobatto rule on the
+    // face's FE_Q support points, a diagonal that changes with the node
+    // spacing.
     std::vector<StructuralModel::SpringFaceRule>
     StructuralModel::spring_face_rules(
       const scene::SpringSet    &s,
