@@ -63,20 +63,27 @@ namespace squeal
                     "PCFactorSetMatSolverType");
       }
 
+      namespace
+      {
+        // How B's pattern relates to A's, from their stored entries: the
+        // same number (one model's combinations all copy the first part's
+        // pattern), fewer (B on its own nonzeros within A's), or more.
+        MatStructure
+        pattern_of(Mat A, Mat B)
+        {
+          MatInfo a, b;
+          MatGetInfo(A, MAT_GLOBAL_SUM, &a);
+          MatGetInfo(B, MAT_GLOBAL_SUM, &b);
+          return a.nz_used == b.nz_used ? SAME_NONZERO_PATTERN :
+                 a.nz_used > b.nz_used  ? SUBSET_NONZERO_PATTERN :
+                                          DIFFERENT_NONZERO_PATTERN;
+        }
+      } // namespace
+
       void
       add_scaled(PETScMatrix &A, const double a, const PETScMatrix &B)
       {
-        const auto stored = [](const PETScMatrix &X) {
-          MatInfo info;
-          MatGetInfo(X, MAT_GLOBAL_SUM, &info);
-          return info.nz_used;
-        };
-        check_petsc(MatAXPY(A,
-                            a,
-                            B,
-                            stored(A) == stored(B) ? SAME_NONZERO_PATTERN :
-                            stored(A) > stored(B)  ? SUBSET_NONZERO_PATTERN :
-                                                     DIFFERENT_NONZERO_PATTERN),
+        check_petsc(MatAXPY(A, a, B, pattern_of(A, B)),
                     "sparse matrices",
                     "MatAXPY");
       }
@@ -104,15 +111,7 @@ namespace squeal
             check_petsc(STGetMatrix(st, 1, &B),
                         "shift-and-invert",
                         "STGetMatrix");
-            MatInfo a, b;
-            MatGetInfo(A, MAT_GLOBAL_SUM, &a);
-            MatGetInfo(B, MAT_GLOBAL_SUM, &b);
-            check_petsc(STSetMatStructure(st,
-                                          a.nz_used == b.nz_used ?
-                                            SAME_NONZERO_PATTERN :
-                                          a.nz_used > b.nz_used ?
-                                            SUBSET_NONZERO_PATTERN :
-                                            DIFFERENT_NONZERO_PATTERN),
+            check_petsc(STSetMatStructure(st, pattern_of(A, B)),
                         "shift-and-invert",
                         "STSetMatStructure");
           }
