@@ -201,54 +201,84 @@ namespace squeal
           Cr += Mr * m.B;
         }
 
-        // Appends the part of the block T M-orthogonal to V: two passes of
-        // T -= V (V^T M V)^-1 V^T M T, exact whatever V's orthonormality;
-        // columns whose remainder is below 1e-8 of their M-norm are dropped,
-        // the rest M-orthonormalised among themselves (a first block of
-        // nearly M-orthonormal @p modes by a Cholesky factor of its Gram
-        // matrix, which keeps them nearly as they are; otherwise by
+        // Appends the part of the block T M-orthogonal to V: a pass of
+        // T -= V (V^T M V)^-1 V^T M T, exact whatever V's orthonormality,
+        // and a second one for the columns that lost more than half their
+        // squared M-norm to it (Kahan's "twice is enough"); columns whose
+        // remainder is below 1e-8 of their M-norm are dropped, the rest
+        // M-orthonormalised among themselves (a first block of nearly
+        // M-orthonormal @p modes by a Cholesky factor of its Gram matrix,
+        // which keeps them nearly as they are; otherwise by
         // orthonormalising_transform, which drops dependent directions).
         void
         append(Eigen::MatrixXd T, const bool modes = false)
         {
+          // the part of the columns of X along V, removed: their squared
+          // M-norms
+          const auto remove_span = [&](Eigen::MatrixXd &X) {
+            // V^T M X
+            Eigen::MatrixXd coefficients =
+              stored ? Eigen::MatrixXd(WM.transpose() * X) :
+                       Eigen::MatrixXd(V.transpose() * multiply(M, X));
+            sum_over_ranks(coefficients, comm);
+            coefficients = Mr.llt().solve(coefficients);
+            X -= V * coefficients;
+            return Eigen::VectorXd(
+              (coefficients.transpose() * Mr * coefficients)
+                .diagonal()
+                .cwiseMax(0.));
+          };
           Eigen::VectorXd in_span = Eigen::VectorXd::Zero(T.cols());
-          for (unsigned int pass = 0; pass < 2 && V.cols() > 0; ++pass)
-            {
-              // V^T M T
-              Eigen::MatrixXd coefficients =
-                stored ? Eigen::MatrixXd(WM.transpose() * T) :
-                         Eigen::MatrixXd(V.transpose() * multiply(M, T));
-              sum_over_ranks(coefficients, comm);
-              coefficients = Mr.llt().solve(coefficients);
-              T -= V * coefficients;
-              if (pass == 0)
-                in_span = (coefficients.transpose() * Mr * coefficients)
-                            .diagonal()
-                            .cwiseMax(0.);
-            }
-          Eigen::MatrixXd MT   = multiply(M, T);
-          Eigen::MatrixXd gram = T.transpose() * MT;
-          sum_over_ranks(gram, comm);
-          std::vector<int> keep;
+          if (V.cols() > 0)
+            in_span = remove_span(T);
+          Eigen::MatrixXd MT = multiply(M, T);
+          Eigen::VectorXd remainder =
+            T.cwiseProduct(MT).colwise().sum().transpose();
+          {
+            Eigen::MatrixXd r = remainder;
+            sum_over_ranks(r, comm);
+            remainder = r;
+          }
+          std::vector<int> keep, again;
           for (int j = 0; j < T.cols(); ++j)
-            if (gram(j, j) > 1e-16 * (gram(j, j) + in_span[j]))
-              keep.push_back(j);
+            if (remainder[j] > 1e-16 * (remainder[j] + in_span[j]))
+              {
+                keep.push_back(j);
+                if (remainder[j] < in_span[j])
+                  again.push_back(j);
+              }
           if (keep.empty())
             return;
           // the kept columns, in place (memory: the blocks are n x 2 k)
-          Eigen::MatrixXd gram_k(keep.size(), keep.size());
           for (unsigned int a = 0; a < keep.size(); ++a)
-            {
-              if (int(a) != keep[a])
-                {
-                  T.col(a)  = T.col(keep[a]);
-                  MT.col(a) = MT.col(keep[a]);
-                }
-              for (unsigned int b = 0; b < keep.size(); ++b)
-                gram_k(a, b) = gram(keep[a], keep[b]);
-            }
+            if (int(a) != keep[a])
+              {
+                T.col(a)  = T.col(keep[a]);
+                MT.col(a) = MT.col(keep[a]);
+              }
           T.conservativeResize(Eigen::NoChange, keep.size());
           MT.conservativeResize(Eigen::NoChange, keep.size());
+          if (!again.empty())
+            {
+              // the second pass, on the columns that need it
+              Eigen::MatrixXd  X(T.rows(), again.size());
+              std::vector<int> at(again.size());
+              for (unsigned int a = 0; a < again.size(); ++a)
+                {
+                  at[a] = std::find(keep.begin(), keep.end(), again[a]) -
+                          keep.begin();
+                  X.col(a) = T.col(at[a]);
+                }
+              remove_span(X);
+              const Eigen::MatrixXd MX = multiply(M, X);
+              for (unsigned int a = 0; a < again.size(); ++a)
+                {
+                  T.col(at[a])  = X.col(a);
+                  MT.col(at[a]) = MX.col(a);
+                }
+            }
+          Eigen::MatrixXd gram_k = T.transpose() * MT;
+          sum_over_ranks(gram_k, comm);
           Eigen::MatrixXd S;
           if (V.cols() == 0 && modes)
             {
@@ -301,10 +331,18 @@ namespace squeal
             A << Ar, project(V, AN), lower, project(N, AN);
             Ar.swap(A);
           };
+          // the same for M: N^T M V = (V^T M N)^T
+          const auto grow_mass = [&](const Eigen::MatrixXd &MN) {
+            const int             r = V.cols(), q = N.cols();
+            const Eigen::MatrixXd upper = project(V, MN);
+            Eigen::MatrixXd       A(r + q, r + q);
+            A << Mr, upper, upper.transpose(), project(N, MN);
+            Mr.swap(A);
+          };
           if (stored)
             {
               Eigen::MatrixXd NC = damping_times(N), NK = multiply(K, N);
-              grow(Mr, NM, project(N, WM));
+              grow_mass(NM);
               grow(Cr, NC, project(N, WC));
               grow(Kr, NK, project(N, WK));
               extend(WM, NM);
@@ -313,13 +351,13 @@ namespace squeal
             }
           else
             {
-              // N^T A V = (A^T N)^T V (M is symmetric)
+              // N^T A V = (A^T N)^T V
               if (!Ct)
                 {
                   Ct = std::make_unique<const Transposed>(C);
                   Kt = std::make_unique<const Transposed>(K);
                 }
-              grow(Mr, NM, project(NM, V));
+              grow_mass(NM);
               NM.resize(0, 0);
               grow(Cr, damping_times(N), project(damping_times(Ct->t, N), V));
               grow(Kr, multiply(K, N), project(multiply(Kt->t, N), V));
@@ -657,13 +695,27 @@ namespace squeal
       std::vector<double>                  res;
       for (r.rounds = 0;; ++r.rounds)
         {
+          auto t = std::chrono::steady_clock::now();
+          // seconds since t, t reset
+          const auto lap = [&t]() {
+            const double dt = seconds_since(t);
+            t               = std::chrono::steady_clock::now();
+            return dt;
+          };
           pairs = internal::projected_eigenpairs(
             s.Mr, s.Cr, s.Kr, band.f_min, band.f_max, -w_t, f_top);
+          r.seconds_projected += lap();
           Eigen::MatrixXd corrections;
           res = residuals(s, pairs, band.residual_tolerance, corrections);
+          r.seconds_residuals += lap();
           if (corrections.cols() == 0 || r.rounds == band.max_rounds)
             break;
-          s.append(internal::solve_block(factorised, K_s, corrections));
+          Eigen::MatrixXd directions =
+            internal::solve_block(factorised, K_s, corrections);
+          corrections.resize(0, 0);
+          r.seconds_solves += lap();
+          s.append(std::move(directions));
+          r.seconds_growth += lap();
         }
       r.basis_size                  = s.V.cols();
       std::vector<EigenPair> result = ritz_pairs(s, owned, pairs, res);
@@ -695,6 +747,9 @@ namespace squeal
             << "); " << t_count << " s count, " << t_symmetric - t_count
             << " s symmetric modes, " << t_projection << " s projection, "
             << r.seconds - t_symmetric - t_projection << " s refinement ("
+            << r.seconds_projected << " s projected eigenproblems, "
+            << r.seconds_residuals << " s residuals, " << r.seconds_solves
+            << " s block solves, " << r.seconds_growth << " s subspace growth; "
             << band.symmetric_solver
             << " for the symmetric modes); peak memory " << r.peak_memory_mb
             << " MB (" << 1024. * r.peak_memory_mb / M.m() << " kB per DoF)"

@@ -81,6 +81,12 @@ namespace squeal
       double       largest_residual   = 0; ///< relative, over the pairs
       unsigned int above_tolerance    = 0; ///< pairs above the tolerance
       double       seconds            = 0; ///< wall time of the solve [s]
+      /// wall time of the refinement rounds [s] in the projected (dense)
+      /// eigenproblems, the residuals on the full model, the block solves
+      /// of the corrections and the subspace's growth (M-orthogonalisation
+      /// and projection of the new vectors)
+      double seconds_projected = 0, seconds_residuals = 0, seconds_solves = 0,
+             seconds_growth = 0;
       /// peak resident memory of the processes so far (VmHWM summed over
       /// the ranks) [MB]: an upper bound of the solve's memory
       double peak_memory_mb = 0;
