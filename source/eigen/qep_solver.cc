@@ -81,9 +81,6 @@ namespace squeal
                 "EPSSetDimensions");
           check(EPSSetTolerances(eps, options.tolerance, 2000),
                 "EPSSetTolerances");
-          // M is positive definite (every body has rho > 0): the
-          // eigenvectors need no purification (one more solve each)
-          check(EPSSetPurify(eps, PETSC_FALSE), "EPSSetPurify");
           check(EPSSolve(eps), "EPSSolve");
           PetscInt nconv;
           check(EPSGetConverged(eps, &nconv), "EPSGetConverged");

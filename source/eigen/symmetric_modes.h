@@ -63,9 +63,6 @@ namespace squeal
           check_eps(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE),
                     "EPSSetWhichEigenpairs");
           check_eps(EPSSetTolerances(eps, tolerance, 2000), "EPSSetTolerances");
-          // M is positive definite (every body has rho > 0): the
-          // eigenvectors need no purification (one more solve each)
-          check_eps(EPSSetPurify(eps, PETSC_FALSE), "EPSSetPurify");
           ST st;
           check_eps(EPSGetST(eps, &st), "EPSGetST");
           ksp = static_cast<KSP>(internal::shift_invert_with_mumps(st, true));
