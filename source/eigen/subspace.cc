@@ -1,0 +1,379 @@
+// The Rayleigh-Ritz subspace of the damped friction-coupled problem
+// (subspace.h).
+
+#include "subspace.h"
+
+#include <deal.II/base/index_set.h>
+
+#include <petscmat.h>
+
+#include <complex>
+#include <stdexcept>
+#include <utility>
+
+namespace squeal
+{
+  namespace eigen
+  {
+    namespace internal
+    {
+      namespace
+      {
+        // X = [X Y] (the columns of a column-major block grow in place where
+        // the allocator can: no second copy of X), Y freed
+        void
+        extend(Eigen::MatrixXd &X, Eigen::MatrixXd &Y)
+        {
+          const Eigen::Index r = X.cols();
+          X.conservativeResize(Y.rows(), r + Y.cols());
+          X.rightCols(Y.cols()) = Y;
+          Y.resize(0, 0);
+        }
+
+        // The real and imaginary parts of the pairs' coordinates, r x m each
+        void
+        coordinates(const std::vector<ProjectedPair> &pairs,
+                    const int                         r,
+                    Eigen::MatrixXd                  &Qr,
+                    Eigen::MatrixXd                  &Qi)
+        {
+          Qr.resize(r, pairs.size());
+          Qi.resize(r, pairs.size());
+          for (unsigned int j = 0; j < pairs.size(); ++j)
+            {
+              Qr.col(j) = pairs[j].q.real();
+              Qi.col(j) = pairs[j].q.imag();
+            }
+        }
+      } // namespace
+
+      PointMatrices::PointMatrices(const physics::MatrixParts    &model,
+                                   const parameters::ScalarPoint &point)
+      {
+        model.mass(point, M);
+        physics::store_nonzeros_only(M,
+                                     M.locally_owned_range_indices(),
+                                     M.get_mpi_communicator());
+        model.stiffness(point, K);
+        model.damping(point, C);
+        model.symmetric_stiffness(point, K_s);
+      }
+
+      Transposed::Transposed(const PETScMatrix &A)
+      {
+        check_petsc(MatTranspose(A, MAT_INITIAL_MATRIX, &t),
+                    "full solver",
+                    "MatTranspose");
+      }
+
+      Transposed::~Transposed()
+      {
+        MatDestroy(&t);
+      }
+
+      Subspace::Subspace(const PointMatrices &A, const bool stored)
+        : M(A.M)
+        , C(A.C)
+        , K(A.K)
+        , comm(A.M.get_mpi_communicator())
+        , stored(stored)
+      {}
+
+      Subspace::Subspace(const PETScMatrix &M,
+                         const PETScMatrix &C,
+                         const PETScMatrix &K,
+                         Projection       &&start,
+                         const bool         stored)
+        : M(M)
+        , C(C)
+        , K(K)
+        , comm(M.get_mpi_communicator())
+        , stored(stored)
+        , V(std::move(start.V))
+        , WM(std::move(start.MV))
+        , WC(std::move(start.CV))
+        , WK(std::move(start.KV))
+        , Mr(std::move(start.Mr))
+        , Cr(std::move(start.Cr))
+        , Kr(std::move(start.Kr))
+        , U(std::move(start.modal_U))
+        , d(std::move(start.modal_d))
+      {}
+
+      Eigen::MatrixXd
+      Subspace::damping_times(const Mat A, const Eigen::MatrixXd &N) const
+      {
+        Eigen::MatrixXd CN = multiply(A, N);
+        if (U.cols() > 0)
+          {
+            Eigen::MatrixXd c = U.transpose() * N;
+            sum_over_ranks(c, comm);
+            CN += U * (d.asDiagonal() * c);
+          }
+        return CN;
+      }
+
+      Eigen::MatrixXd
+      Subspace::damping_times(const Eigen::MatrixXd &N) const
+      {
+        return damping_times(static_cast<Mat>(C), N);
+      }
+
+      std::array<Eigen::MatrixXd, 3>
+      Subspace::products(const Eigen::MatrixXd &Q) const
+      {
+        if (stored)
+          return {{WM * Q, WC * Q, WK * Q}};
+        const Eigen::MatrixXd X = V * Q;
+        return {{multiply(M, X), damping_times(X), multiply(K, X)}};
+      }
+
+      void
+      Subspace::fix_modal_damping(
+        const PETScMatrix                        &K_s,
+        const physics::MatrixParts::ModalDamping &modal)
+      {
+        if (!modal.active() || V.cols() == 0)
+          return;
+        Eigen::MatrixXd Ksr = V.transpose() * multiply(K_s, V);
+        sum_over_ranks(Ksr, comm);
+        const auto m = internal::subspace_modal_damping(Mr, Ksr, modal);
+        U = stored ? Eigen::MatrixXd(WM * m.Psi) : multiply(M, V * m.Psi);
+        d = m.d;
+        if (stored)
+          WC += WM * m.B;
+        Cr += Mr * m.B;
+      }
+
+      void
+      Subspace::append(Eigen::MatrixXd T, const bool modes)
+      {
+        // the part of the columns of X along V, removed: their squared
+        // M-norms
+        const auto remove_span = [&](Eigen::MatrixXd &X) {
+          // V^T M X
+          Eigen::MatrixXd coefficients =
+            stored ? Eigen::MatrixXd(WM.transpose() * X) :
+                     Eigen::MatrixXd(V.transpose() * multiply(M, X));
+          sum_over_ranks(coefficients, comm);
+          coefficients = Mr.llt().solve(coefficients);
+          X -= V * coefficients;
+          return Eigen::VectorXd((coefficients.transpose() * Mr * coefficients)
+                                   .diagonal()
+                                   .cwiseMax(0.));
+        };
+        Eigen::VectorXd in_span = Eigen::VectorXd::Zero(T.cols());
+        if (V.cols() > 0)
+          in_span = remove_span(T);
+        Eigen::MatrixXd MT = multiply(M, T);
+        // the squared M-norms of what is left, 1 x m
+        Eigen::MatrixXd remainder = T.cwiseProduct(MT).colwise().sum();
+        sum_over_ranks(remainder, comm);
+        // the columns kept, and the positions among them of those that
+        // need a second pass
+        std::vector<int> keep, again;
+        for (int j = 0; j < T.cols(); ++j)
+          if (remainder(0, j) > 1e-16 * (remainder(0, j) + in_span[j]))
+            {
+              if (remainder(0, j) < in_span[j])
+                again.push_back(keep.size());
+              keep.push_back(j);
+            }
+        if (keep.empty())
+          return;
+        // the kept columns, in place (memory: the blocks are n x 2 k)
+        for (unsigned int a = 0; a < keep.size(); ++a)
+          if (int(a) != keep[a])
+            {
+              T.col(a)  = T.col(keep[a]);
+              MT.col(a) = MT.col(keep[a]);
+            }
+        T.conservativeResize(Eigen::NoChange, keep.size());
+        MT.conservativeResize(Eigen::NoChange, keep.size());
+        if (!again.empty())
+          {
+            // the second pass, on the columns that need it
+            Eigen::MatrixXd X(T.rows(), again.size());
+            for (unsigned int a = 0; a < again.size(); ++a)
+              X.col(a) = T.col(again[a]);
+            remove_span(X);
+            const Eigen::MatrixXd MX = multiply(M, X);
+            for (unsigned int a = 0; a < again.size(); ++a)
+              {
+                T.col(again[a])  = X.col(a);
+                MT.col(again[a]) = MX.col(a);
+              }
+          }
+        Eigen::MatrixXd gram_k = T.transpose() * MT;
+        sum_over_ranks(gram_k, comm);
+        Eigen::MatrixXd S;
+        if (V.cols() == 0 && modes)
+          {
+            // S = L^-T, gram = L L^T
+            const Eigen::LLT<Eigen::MatrixXd> llt(gram_k);
+            if (llt.info() != Eigen::Success)
+              throw std::runtime_error(
+                "full solver: the symmetric modes are linearly dependent");
+            S = llt.matrixU().solve(
+              Eigen::MatrixXd::Identity(keep.size(), keep.size()));
+          }
+        else
+          S = internal::orthonormalising_transform(gram_k);
+        // each block freed once used
+        Eigen::MatrixXd N = T * S;
+        T.resize(0, 0);
+        Eigen::MatrixXd NM = MT * S;
+        MT.resize(0, 0);
+        const auto project = [&](const Eigen::MatrixXd &X,
+                                 const Eigen::MatrixXd &Y) {
+          Eigen::MatrixXd A = X.transpose() * Y;
+          sum_over_ranks(A, comm);
+          return A;
+        };
+        if (V.cols() == 0)
+          {
+            V  = std::move(N);
+            Mr = project(V, NM);
+            if (stored)
+              {
+                WM = std::move(NM);
+                WC = damping_times(V);
+                WK = multiply(K, V);
+                Cr = project(V, WC);
+                Kr = project(V, WK);
+              }
+            else
+              {
+                Cr = project(V, damping_times(V));
+                Kr = project(V, multiply(K, V));
+              }
+            return;
+          }
+        // [Ar, V^T A N; lower, N^T A N] with lower = N^T A V
+        const auto grow = [&](Eigen::MatrixXd       &Ar,
+                              const Eigen::MatrixXd &AN,
+                              const Eigen::MatrixXd &lower) {
+          const int       r = V.cols(), q = N.cols();
+          Eigen::MatrixXd A(r + q, r + q);
+          A << Ar, project(V, AN), lower, project(N, AN);
+          Ar.swap(A);
+        };
+        // the same for M: N^T M V = (V^T M N)^T
+        const auto grow_mass = [&](const Eigen::MatrixXd &MN) {
+          const int             r = V.cols(), q = N.cols();
+          const Eigen::MatrixXd upper = project(V, MN);
+          Eigen::MatrixXd       A(r + q, r + q);
+          A << Mr, upper, upper.transpose(), project(N, MN);
+          Mr.swap(A);
+        };
+        if (stored)
+          {
+            Eigen::MatrixXd NC = damping_times(N), NK = multiply(K, N);
+            grow_mass(NM);
+            grow(Cr, NC, project(N, WC));
+            grow(Kr, NK, project(N, WK));
+            extend(WM, NM);
+            extend(WC, NC);
+            extend(WK, NK);
+          }
+        else
+          {
+            // N^T A V = (A^T N)^T V
+            if (!Ct)
+              {
+                Ct = std::make_unique<const Transposed>(C);
+                Kt = std::make_unique<const Transposed>(K);
+              }
+            grow_mass(NM);
+            NM.resize(0, 0);
+            grow(Cr, damping_times(N), project(damping_times(Ct->t, N), V));
+            grow(Kr, multiply(K, N), project(multiply(Kt->t, N), V));
+          }
+        extend(V, N);
+      }
+
+      // The relative residuals of the Ritz pairs (V q, lambda) on the full
+      // model, and the residual vectors [Re r, Im r] of those above @p tol.
+      std::vector<double>
+      residuals(const Subspace                   &s,
+                const std::vector<ProjectedPair> &pairs,
+                const double                      tol,
+                Eigen::MatrixXd                  &corrections)
+      {
+        const int       m = pairs.size();
+        Eigen::MatrixXd Qr, Qi;
+        coordinates(pairs, s.V.cols(), Qr, Qi);
+        // the products of the Ritz vectors V [Qr Qi]
+        Eigen::MatrixXd Q(Qr.rows(), 2 * m);
+        Q << Qr, Qi;
+        const auto AX = s.products(Q);
+        const auto Mr = AX[0].leftCols(m), Mi = AX[0].rightCols(m),
+                   Cr = AX[1].leftCols(m), Ci = AX[1].rightCols(m),
+                   Kr = AX[2].leftCols(m), Ki = AX[2].rightCols(m);
+        Eigen::MatrixXd Rr(Kr.rows(), m), Ri(Kr.rows(), m);
+        for (int j = 0; j < m; ++j)
+          {
+            const std::complex<double> l = pairs[j].lambda, l2 = l * l;
+            Rr.col(j) = Kr.col(j) + l.real() * Cr.col(j) -
+                        l.imag() * Ci.col(j) + l2.real() * Mr.col(j) -
+                        l2.imag() * Mi.col(j);
+            Ri.col(j) = Ki.col(j) + l.real() * Ci.col(j) +
+                        l.imag() * Cr.col(j) + l2.real() * Mi.col(j) +
+                        l2.imag() * Mr.col(j);
+          }
+        // squared column norms of R, M x, C x, K x, summed over the ranks
+        Eigen::MatrixXd norms(4, m);
+        norms.row(0) = Rr.colwise().squaredNorm() + Ri.colwise().squaredNorm();
+        norms.row(1) = Mr.colwise().squaredNorm() + Mi.colwise().squaredNorm();
+        norms.row(2) = Cr.colwise().squaredNorm() + Ci.colwise().squaredNorm();
+        norms.row(3) = Kr.colwise().squaredNorm() + Ki.colwise().squaredNorm();
+        sum_over_ranks(norms, s.comm);
+        norms = norms.cwiseSqrt();
+        std::vector<double> result(m);
+        std::vector<int>    above;
+        for (int j = 0; j < m; ++j)
+          {
+            const double l = std::abs(pairs[j].lambda);
+            result[j]      = norms(0, j) /
+                        (l * l * norms(1, j) + l * norms(2, j) + norms(3, j));
+            if (result[j] > tol)
+              above.push_back(j);
+          }
+        corrections.resize(Rr.rows(), 2 * above.size());
+        for (unsigned int a = 0; a < above.size(); ++a)
+          {
+            corrections.col(2 * a)     = Rr.col(above[a]);
+            corrections.col(2 * a + 1) = Ri.col(above[a]);
+          }
+        return result;
+      }
+
+      // The Ritz pairs (lambda, V q) of the subspace as distributed
+      // vectors, with their relative residuals RES.
+      std::vector<EigenPair>
+      ritz_pairs(const Subspace                   &s,
+                 const dealii::IndexSet           &owned,
+                 const std::vector<ProjectedPair> &pairs,
+                 const std::vector<double>        &res)
+      {
+        const int       m = pairs.size();
+        Eigen::MatrixXd Qr, Qi;
+        coordinates(pairs, s.V.cols(), Qr, Qi);
+        const Eigen::MatrixXd  Xr = s.V * Qr, Xi = s.V * Qi;
+        std::vector<EigenPair> result;
+        for (int j = 0; j < m; ++j)
+          {
+            EigenPair p;
+            p.lambda   = pairs[j].lambda;
+            p.residual = res[j];
+            p.re.reinit(owned, s.comm);
+            p.im.reinit(owned, s.comm);
+            internal::set_local_part(p.re, Xr.col(j));
+            internal::set_local_part(p.im, Xi.col(j));
+            result.push_back(std::move(p));
+          }
+        return result;
+      }
+    } // namespace internal
+  }   // namespace eigen
+} // namespace squeal
