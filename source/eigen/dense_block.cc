@@ -257,13 +257,13 @@ namespace squeal
       } // namespace
 
       Eigen::MatrixXd
-      multiply(const PETScMatrix &A, const Eigen::MatrixXd &B)
+      multiply(const PETScMatrix &A, Eigen::Ref<const Eigen::MatrixXd> B)
       {
         return multiply(static_cast<Mat>(A), B);
       }
 
       Eigen::MatrixXd
-      multiply(Mat A, const Eigen::MatrixXd &B)
+      multiply(Mat A, Eigen::Ref<const Eigen::MatrixXd> B)
       {
         // Eigen's row-major sparse times row-major dense product reads each
         // nonzero once per block of columns and the rows of B contiguously

@@ -39,11 +39,11 @@ namespace squeal
        * @throws std::runtime_error if PETSc fails.
        */
       Eigen::MatrixXd
-      multiply(const PETScMatrix &A, const Eigen::MatrixXd &B);
+      multiply(const PETScMatrix &A, Eigen::Ref<const Eigen::MatrixXd> B);
 
       /** The same for a PETSc AIJ matrix (MATSEQAIJ or MATMPIAIJ). */
       Eigen::MatrixXd
-      multiply(Mat A, const Eigen::MatrixXd &B);
+      multiply(Mat A, Eigen::Ref<const Eigen::MatrixXd> B);
 
       /**
        * The locally owned rows of the sparse matrix @p A that hold a

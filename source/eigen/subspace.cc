@@ -19,15 +19,32 @@ namespace squeal
     {
       namespace
       {
-        // X = [X Y] (the columns of a column-major block grow in place where
-        // the allocator can: no second copy of X), Y freed
+        using View = Eigen::Map<Eigen::MatrixXd>;
+
+        // view := X, whose memory @p storage takes over
         void
-        extend(Eigen::MatrixXd &X, Eigen::MatrixXd &Y)
+        take(View &view, Eigen::MatrixXd &storage, Eigen::MatrixXd &&X)
         {
-          const Eigen::Index r = X.cols();
-          X.conservativeResize(Y.rows(), r + Y.cols());
-          X.rightCols(Y.cols()) = Y;
+          storage = std::move(X);
+          new (&view) View(storage.data(), storage.rows(), storage.cols());
+        }
+
+        // view := [view Y], Y freed: in place while @p storage has room for
+        // Y's columns, else in a new storage with room for twice the
+        // columns needed (only the columns written become resident)
+        void
+        extend(View &view, Eigen::MatrixXd &storage, Eigen::MatrixXd &Y)
+        {
+          const Eigen::Index n = Y.rows(), r = view.cols(), q = Y.cols();
+          if (storage.rows() != n || storage.cols() < r + q)
+            {
+              Eigen::MatrixXd larger(n, 2 * (r + q));
+              larger.leftCols(r) = view;
+              storage.swap(larger);
+            }
+          storage.middleCols(r, q) = Y;
           Y.resize(0, 0);
+          new (&view) View(storage.data(), n, r + q);
         }
 
         // The real and imaginary parts of the pairs' coordinates, r x m each
@@ -89,19 +106,21 @@ namespace squeal
         , K(K)
         , comm(M.get_mpi_communicator())
         , stored(stored)
-        , V(std::move(start.V))
-        , WM(std::move(start.MV))
-        , WC(std::move(start.CV))
-        , WK(std::move(start.KV))
         , Mr(std::move(start.Mr))
         , Cr(std::move(start.Cr))
         , Kr(std::move(start.Kr))
         , U(std::move(start.modal_U))
         , d(std::move(start.modal_d))
-      {}
+      {
+        take(V, storage[0], std::move(start.V));
+        take(WM, storage[1], std::move(start.MV));
+        take(WC, storage[2], std::move(start.CV));
+        take(WK, storage[3], std::move(start.KV));
+      }
 
       Eigen::MatrixXd
-      Subspace::damping_times(const Mat A, const Eigen::MatrixXd &N) const
+      Subspace::damping_times(const Mat                         A,
+                              Eigen::Ref<const Eigen::MatrixXd> N) const
       {
         Eigen::MatrixXd CN = multiply(A, N);
         if (U.cols() > 0)
@@ -114,7 +133,7 @@ namespace squeal
       }
 
       Eigen::MatrixXd
-      Subspace::damping_times(const Eigen::MatrixXd &N) const
+      Subspace::damping_times(Eigen::Ref<const Eigen::MatrixXd> N) const
       {
         return damping_times(static_cast<Mat>(C), N);
       }
@@ -224,21 +243,21 @@ namespace squeal
         T.resize(0, 0);
         Eigen::MatrixXd NM = MT * S;
         MT.resize(0, 0);
-        const auto project = [&](const Eigen::MatrixXd &X,
-                                 const Eigen::MatrixXd &Y) {
+        const auto project = [&](Eigen::Ref<const Eigen::MatrixXd> X,
+                                 Eigen::Ref<const Eigen::MatrixXd> Y) {
           Eigen::MatrixXd A = X.transpose() * Y;
           sum_over_ranks(A, comm);
           return A;
         };
         if (V.cols() == 0)
           {
-            V  = std::move(N);
+            take(V, storage[0], std::move(N));
             Mr = project(V, NM);
             if (stored)
               {
-                WM = std::move(NM);
-                WC = damping_times(V);
-                WK = multiply(K, V);
+                take(WM, storage[1], std::move(NM));
+                take(WC, storage[2], damping_times(V));
+                take(WK, storage[3], multiply(K, V));
                 Cr = project(V, WC);
                 Kr = project(V, WK);
               }
@@ -272,9 +291,9 @@ namespace squeal
             grow_mass(NM);
             grow(Cr, NC, project(N, WC));
             grow(Kr, NK, project(N, WK));
-            extend(WM, NM);
-            extend(WC, NC);
-            extend(WK, NK);
+            extend(WM, storage[1], NM);
+            extend(WC, storage[2], NC);
+            extend(WK, storage[3], NK);
           }
         else
           {
@@ -289,7 +308,7 @@ namespace squeal
             grow(Cr, damping_times(N), project(damping_times(Ct->t, N), V));
             grow(Kr, multiply(K, N), project(multiply(Kt->t, N), V));
           }
-        extend(V, N);
+        extend(V, storage[0], N);
       }
 
       // The relative residuals of the Ritz pairs (V q, lambda) on the full

@@ -65,7 +65,21 @@ namespace squeal
         const PETScMatrix &M, &C, &K;
         MPI_Comm           comm;
         bool               stored;
-        Eigen::MatrixXd    V, WM, WC, WK, Mr, Cr, Kr;
+        /**
+         * V and, with stored products, M V, C V and K V (n x r each): views
+         * of the leading columns of #storage.
+         */
+        Eigen::Map<Eigen::MatrixXd> V{nullptr, 0, 0}, WM{nullptr, 0, 0},
+          WC{nullptr, 0, 0}, WK{nullptr, 0, 0};
+        /** The projected r x r matrices V^T M V, V^T C V, V^T K V. */
+        Eigen::MatrixXd Mr, Cr, Kr;
+        /**
+         * The memory behind V, WM, WC and WK, in this order: room for
+         * twice the columns in use whenever a block outgrows it, so that
+         * the blocks grow in place (columns never written take no
+         * physical memory) and are copied a logarithmic number of times.
+         */
+        std::array<Eigen::MatrixXd, 4> storage;
         /** The modal damping U diag(d) U^T once fixed (local rows of U). */
         Eigen::MatrixXd U;
         Eigen::VectorXd d;
@@ -91,11 +105,11 @@ namespace squeal
          * block N): the sparse (Rayleigh) C or C^T and the modal damping.
          */
         Eigen::MatrixXd
-        damping_times(const Mat A, const Eigen::MatrixXd &N) const;
+        damping_times(const Mat A, Eigen::Ref<const Eigen::MatrixXd> N) const;
 
         /** C N. */
         Eigen::MatrixXd
-        damping_times(const Eigen::MatrixXd &N) const;
+        damping_times(Eigen::Ref<const Eigen::MatrixXd> N) const;
 
         /** M V Q, C V Q and K V Q (n x columns of the r x m block Q). */
         std::array<Eigen::MatrixXd, 3>
