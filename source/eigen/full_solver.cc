@@ -259,6 +259,19 @@ namespace squeal
           Phi.col(j) = internal::local_part(modes[j].re, owned);
           omega2[j]  = modes[j].omega2.real();
         }
+      if (slepc)
+        {
+          // SLEPc's eigenvector purification, for all of them in one block:
+          // a step of inverse iteration x <- (K_s - sigma M)^-1 M x removes
+          // what the Krylov basis left along the other eigenvectors (the
+          // close doublets of a disc need it), then unit M-norms
+          Phi = internal::solve_block(slepc->solver(), K_s, multiply(M, Phi));
+          Eigen::MatrixXd norms =
+            Phi.cwiseProduct(multiply(M, Phi)).colwise().sum();
+          sum_over_ranks(norms, M.get_mpi_communicator());
+          for (int j = 0; j < Phi.cols(); ++j)
+            Phi.col(j) /= std::sqrt(norms(0, j));
+        }
       // the modes live on in Phi; the eigensolver's basis is not needed
       modes.clear();
       modes.shrink_to_fit();

@@ -63,6 +63,9 @@ namespace squeal
           check_eps(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE),
                     "EPSSetWhichEigenpairs");
           check_eps(EPSSetTolerances(eps, tolerance, 2000), "EPSSetTolerances");
+          // the eigenvectors are purified afterwards in one block solve
+          // (purify() below): SLEPc's purification is one solve per vector
+          check_eps(EPSSetPurify(eps, PETSC_FALSE), "EPSSetPurify");
           ST st;
           check_eps(EPSGetST(eps, &st), "EPSGetST");
           ksp = static_cast<KSP>(internal::shift_invert_with_mumps(st, true));
