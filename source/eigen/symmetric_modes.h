@@ -63,8 +63,8 @@ namespace squeal
           check_eps(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE),
                     "EPSSetWhichEigenpairs");
           check_eps(EPSSetTolerances(eps, tolerance, 2000), "EPSSetTolerances");
-          // the eigenvectors are purified afterwards in one block solve
-          // (purify() below): SLEPc's purification is one solve per vector
+          // the caller purifies the eigenvectors in one block solve
+          // (solve_full); SLEPc's purification is one solve per vector
           check_eps(EPSSetPurify(eps, PETSC_FALSE), "EPSSetPurify");
           ST st;
           check_eps(EPSGetST(eps, &st), "EPSGetST");
