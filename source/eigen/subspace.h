@@ -100,6 +100,11 @@ namespace squeal
                  Projection       &&start,
                  const bool         stored);
 
+        /** Not copied or moved: V, WM, WC and WK point into #storage. */
+        Subspace(const Subspace &) = delete;
+        Subspace &
+        operator=(const Subspace &) = delete;
+
         /**
          * A N + U diag(d) U^T N (n x m for the local rows of an n x m
          * block N): the sparse (Rayleigh) C or C^T and the modal damping.
