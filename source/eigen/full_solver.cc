@@ -264,13 +264,11 @@ namespace squeal
           // SLEPc's eigenvector purification, for all of them in one block:
           // a step of inverse iteration x <- (K_s - sigma M)^-1 M x removes
           // what the Krylov basis left along the other eigenvectors (the
-          // close doublets of a disc need it), then unit M-norms
+          // close doublets of a disc need it); it scales an eigenvector by
+          // 1 / (omega^2 - sigma), undone here (append() below
+          // M-orthonormalises them)
           Phi = internal::solve_block(slepc->solver(), K_s, multiply(M, Phi));
-          Eigen::MatrixXd norms =
-            Phi.cwiseProduct(multiply(M, Phi)).colwise().sum();
-          sum_over_ranks(norms, M.get_mpi_communicator());
-          for (int j = 0; j < Phi.cols(); ++j)
-            Phi.col(j) /= std::sqrt(norms(0, j));
+          Phi *= (omega2.array() - sigma).matrix().asDiagonal();
         }
       // the modes live on in Phi; the eigensolver's basis is not needed
       modes.clear();

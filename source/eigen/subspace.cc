@@ -36,7 +36,7 @@ namespace squeal
         extend(View &view, Eigen::MatrixXd &storage, Eigen::MatrixXd &Y)
         {
           const Eigen::Index n = Y.rows(), r = view.cols(), q = Y.cols();
-          if (storage.rows() != n || storage.cols() < r + q)
+          if (storage.cols() < r + q)
             {
               Eigen::MatrixXd larger(n, 2 * (r + q));
               larger.leftCols(r) = view;
