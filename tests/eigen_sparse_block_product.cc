@@ -6,6 +6,12 @@
 // couplings (so that under mpirun -np 2 every rank reads the other's
 // rows), times blocks of 150 (more than two column blocks of 64 and a
 // remainder), 1 and 0 columns. Agreement to 1e-13 of the largest entry.
+// Then the parts' product (eigen::internal::PartsProduct: sums
+// sum_k c_k A_k B from each part's nonzero rows) against the same sums of
+// the dense parts: the matrix above with a third of its entries stored
+// as zeros (a part on the common pattern), a part on its own pattern of
+// 12 scattered rows with long-range couplings, and an empty part; two
+// coefficient vectors, one of which skips a part.
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -14,6 +20,7 @@
 #include "test_tools.h"
 
 #include <cmath>
+#include <vector>
 
 using namespace dealii;
 using namespace squeal;
@@ -97,6 +104,85 @@ main(int argc, char **argv)
       test_tools::check_true(name + "the product is not zero", scale > 1.);
       test_tools::check(
         name + "A B against the dense product", error, 0., 1e-13, scale);
+    }
+
+  // the parts
+  std::vector<Eigen::MatrixXd>    dense_parts(3, Eigen::MatrixXd::Zero(n, n));
+  std::vector<eigen::PETScMatrix> parts(3);
+  const auto in_second = [](const unsigned int i, const unsigned int j) {
+    return i % 25 == 3 && (j == i || j == (i * 7 + 101) % n);
+  };
+  DynamicSparsityPattern own(n, n);
+  for (unsigned int i = 0; i < n; ++i)
+    {
+      own.add(i, i); // every row keeps its diagonal
+      for (unsigned int j = 0; j < n; ++j)
+        if (in_second(i, j))
+          own.add(i, j);
+    }
+  parts[0].reinit(owned, owned, dsp, MPI_COMM_WORLD);
+  parts[1].reinit(owned, owned, own, MPI_COMM_WORLD);
+  parts[2].reinit(owned, owned, own, MPI_COMM_WORLD);
+  for (unsigned int i = 0; i < n; ++i)
+    for (unsigned int j = 0; j < n; ++j)
+      {
+        const bool first_part = coupled(i, j) && (i + j) % 3 != 0;
+        if (first_part)
+          dense_parts[0](i, j) = entry(i, j);
+        if (in_second(i, j))
+          dense_parts[1](i, j) = 2. * entry(j, i);
+        if (i >= first && i < last)
+          {
+            if (coupled(i, j))
+              parts[0].set(i, j, dense_parts[0](i, j));
+            if (in_second(i, j))
+              parts[1].set(i, j, dense_parts[1](i, j));
+          }
+      }
+  for (auto &p : parts)
+    p.compress(VectorOperation::insert);
+  physics::MatrixParts model;
+  for (const auto &p : parts)
+    model.parts.push_back({&p});
+  const eigen::internal::PartsProduct product(model);
+  const std::vector<double>           c1{1.5, -0.5, 3.}, c2{0., 2., 0.};
+  for (const int columns : {150, 0})
+    {
+      Eigen::MatrixXd B(n, columns);
+      for (unsigned int i = 0; i < n; ++i)
+        for (int j = 0; j < columns; ++j)
+          B(i, j) = std::sin(0.3 * i - 0.11 * j) + 0.02 * j;
+      const auto sums =
+        product.multiply({&c1, &c2}, B.middleRows(first, last - first));
+      const std::string name =
+        "parts, " + std::to_string(columns) + " columns: ";
+      test_tools::check(name + "two sums", sums.size(), 2, 0., 1.);
+      for (unsigned int s = 0; s < 2 && columns > 0; ++s)
+        {
+          const auto     &c = s == 0 ? c1 : c2;
+          Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+          for (unsigned int k = 0; k < 3; ++k)
+            A += c[k] * dense_parts[k];
+          const Eigen::MatrixXd reference =
+            (A * B).middleRows(first, last - first);
+          const double scale =
+            Utilities::MPI::max(reference.cwiseAbs().maxCoeff(),
+                                MPI_COMM_WORLD);
+          const double error =
+            Utilities::MPI::max((sums[s] - reference).cwiseAbs().maxCoeff(),
+                                MPI_COMM_WORLD);
+          const std::string sum = name + "sum " + std::to_string(s + 1);
+          test_tools::verbose() << sum << ": largest entry " << scale
+                                << ", largest error " << error << '\n';
+          test_tools::check_true(sum + " is not zero", scale > 1.);
+          test_tools::check(sum + " against the dense sum of the parts",
+                            error,
+                            0.,
+                            1e-13,
+                            scale);
+        }
+      if (columns == 0)
+        test_tools::check(name + "no columns", sums[0].cols(), 0, 0., 1.);
     }
   return test_tools::finish();
 }

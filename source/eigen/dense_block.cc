@@ -15,6 +15,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 extern "C" void
 dgeev_(const char *jobvl,
@@ -310,6 +311,186 @@ namespace squeal
             if (ghosts)
               product += o->map() * ghosts->gather(local);
             result.middleCols(c, w) = product;
+          }
+        return result;
+      }
+
+      struct PartsProduct::Data
+      {
+        // one part's nonzero rows: CSR over [local columns, ghost columns]
+        struct Part
+        {
+          std::vector<int>    rows, outer, inner;
+          std::vector<double> values;
+        };
+        std::vector<Part>                parts;
+        int                              n_local = 0, n_ghost = 0;
+        std::unique_ptr<const GhostRows> ghosts;
+      };
+
+      PartsProduct::PartsProduct(const physics::MatrixParts &model)
+        : data(std::make_unique<Data>())
+      {
+        Data &d = *data;
+        // the ghost columns of every part, in one ascending numbering
+        std::vector<PetscInt> ghost_columns;
+        struct Blocks
+        {
+          Mat             diagonal = nullptr, off_diagonal = nullptr;
+          const PetscInt *colmap  = nullptr;
+          PetscInt        n_ghost = 0;
+        };
+        std::vector<Blocks> blocks(model.size());
+        bool                is_mpi = false;
+        for (unsigned int k = 0; k < model.size(); ++k)
+          {
+            Mat       a   = model.matrix(k);
+            PetscBool mpi = PETSC_FALSE, seq = PETSC_FALSE;
+            PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a),
+                                   MATMPIAIJ,
+                                   &mpi);
+            PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a),
+                                   MATSEQAIJ,
+                                   &seq);
+            if (!mpi && !seq)
+              throw std::runtime_error(
+                "dense block: the sparse matrix is not of PETSc type AIJ");
+            Blocks &b  = blocks[k];
+            b.diagonal = a;
+            if (mpi)
+              {
+                is_mpi = true;
+                if (MatMPIAIJGetSeqAIJ(
+                      a, &b.diagonal, &b.off_diagonal, &b.colmap) != 0)
+                  throw std::runtime_error(
+                    "dense block: MatMPIAIJGetSeqAIJ failed");
+                MatGetSize(b.off_diagonal, nullptr, &b.n_ghost);
+                ghost_columns.insert(ghost_columns.end(),
+                                     b.colmap,
+                                     b.colmap + b.n_ghost);
+              }
+          }
+        std::sort(ghost_columns.begin(), ghost_columns.end());
+        ghost_columns.erase(std::unique(ghost_columns.begin(),
+                                        ghost_columns.end()),
+                            ghost_columns.end());
+        {
+          PetscInt rows;
+          MatGetLocalSize(model.matrix(0), &rows, nullptr);
+          d.n_local = rows;
+        }
+        d.n_ghost = ghost_columns.size();
+        if (is_mpi)
+          d.ghosts = std::make_unique<const GhostRows>(model.matrix(0),
+                                                       d.n_ghost,
+                                                       ghost_columns.data());
+        for (unsigned int k = 0; k < model.size(); ++k)
+          {
+            const Blocks                  &b = blocks[k];
+            const CsrView                  diagonal(b.diagonal);
+            std::unique_ptr<const CsrView> off;
+            if (b.off_diagonal)
+              off = std::make_unique<const CsrView>(b.off_diagonal);
+            // the position of each of this part's ghost columns
+            std::vector<int> ghost(b.n_ghost);
+            for (PetscInt j = 0; j < b.n_ghost; ++j)
+              ghost[j] = d.n_local + (std::lower_bound(ghost_columns.begin(),
+                                                       ghost_columns.end(),
+                                                       b.colmap[j]) -
+                                      ghost_columns.begin());
+            Data::Part part;
+            part.outer.push_back(0);
+            const auto dm = diagonal.map();
+            for (int i = 0; i < d.n_local; ++i)
+              {
+                const std::size_t before = part.values.size();
+                for (std::decay_t<decltype(dm)>::InnerIterator it(dm, i); it;
+                     ++it)
+                  if (it.value() != 0.)
+                    {
+                      part.inner.push_back(it.col());
+                      part.values.push_back(it.value());
+                    }
+                if (off)
+                  {
+                    const auto om = off->map();
+                    for (std::decay_t<decltype(om)>::InnerIterator it(om, i);
+                         it;
+                         ++it)
+                      if (it.value() != 0.)
+                        {
+                          part.inner.push_back(ghost[it.col()]);
+                          part.values.push_back(it.value());
+                        }
+                  }
+                if (part.values.size() > before)
+                  {
+                    part.rows.push_back(i);
+                    part.outer.push_back(part.values.size());
+                  }
+              }
+            d.parts.push_back(std::move(part));
+          }
+      }
+
+      PartsProduct::~PartsProduct() = default;
+
+      std::vector<Eigen::MatrixXd>
+      PartsProduct::multiply(
+        const std::vector<const physics::MatrixParts::Coefficients *> &c,
+        Eigen::Ref<const Eigen::MatrixXd>                              B) const
+      {
+        const Data        &d = *data;
+        const unsigned int q = c.size();
+        for (const auto *a : c)
+          if (a->size() != d.parts.size())
+            throw std::logic_error(
+              "PartsProduct::multiply: one coefficient per part");
+        std::vector<Eigen::MatrixXd> result(q,
+                                            Eigen::MatrixXd(B.rows(),
+                                                            B.cols()));
+        // blocks of 64 columns keep the rows of B that a row of a part
+        // reads in cache
+        constexpr Eigen::Index width = 64;
+        for (Eigen::Index c0 = 0; c0 < B.cols(); c0 += width)
+          {
+            const Eigen::Index w = std::min(width, B.cols() - c0);
+            RowBlock           extended(d.n_local + d.n_ghost, w);
+            {
+              const RowBlock local        = B.middleCols(c0, w);
+              extended.topRows(d.n_local) = local;
+              if (d.ghosts)
+                extended.bottomRows(d.n_ghost) = d.ghosts->gather(local);
+            }
+            std::vector<RowBlock> sums(q, RowBlock::Zero(d.n_local, w));
+            for (unsigned int k = 0; k < d.parts.size(); ++k)
+              {
+                const Data::Part &p    = d.parts[k];
+                bool              used = false;
+                for (unsigned int i = 0; i < q; ++i)
+                  used = used || (*c[i])[k] != 0.;
+                if (!used || p.rows.empty())
+                  continue;
+                const Eigen::Map<
+                  const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>
+                               A(p.rows.size(),
+                    extended.rows(),
+                    p.values.size(),
+                    p.outer.data(),
+                    p.inner.data(),
+                    p.values.data());
+                const RowBlock P = A * extended;
+                for (unsigned int i = 0; i < q; ++i)
+                  {
+                    const double a = (*c[i])[k];
+                    if (a == 0.)
+                      continue;
+                    for (std::size_t r = 0; r < p.rows.size(); ++r)
+                      sums[i].row(p.rows[r]) += a * P.row(r);
+                  }
+              }
+            for (unsigned int i = 0; i < q; ++i)
+              result[i].middleCols(c0, w) = sums[i];
           }
         return result;
       }

@@ -14,6 +14,7 @@
 #include <Eigen/Dense>
 
 #include <complex>
+#include <memory>
 #include <vector>
 
 namespace squeal
@@ -44,6 +45,48 @@ namespace squeal
       /** The same for a PETSc AIJ matrix (MATSEQAIJ or MATMPIAIJ). */
       Eigen::MatrixXd
       multiply(Mat A, Eigen::Ref<const Eigen::MatrixXd> B);
+
+      /**
+       * Products of a model's parts with dense blocks: sum_k c_k A_k B for
+       * several coefficient vectors c at once (M(p) B, C(p) B and K(p) B of
+       * a point p without forming M(p), C(p) or K(p)), one pass over each
+       * part's nonzero entries. Each part's rows that hold a nonzero value
+       * are copied once, their nonzeros only (a part on the common pattern
+       * stores zeros outside its body), with the ghost columns of all
+       * parts in one numbering, so that a block's ghost rows are gathered
+       * once for every part. The cost of a product is about that of M(p)
+       * and K_s(p) on their nonzeros, against M(p), C(p) and K(p) for
+       * three products (C(p) = alpha M + beta K_s on the whole pattern).
+       * Memory: 12 bytes per nonzero of the parts.
+       */
+      class PartsProduct
+      {
+      public:
+        /**
+         * The parts of @p model, copied (the model may change afterwards).
+         * @throws std::runtime_error if a part is not a PETSc AIJ matrix or
+         * PETSc fails.
+         */
+        explicit PartsProduct(const physics::MatrixParts &model);
+        ~PartsProduct();
+        PartsProduct(const PartsProduct &) = delete;
+        PartsProduct &
+        operator=(const PartsProduct &) = delete;
+
+        /**
+         * sum_k c[i][k] A_k B for each coefficient vector c[i] (one per
+         * part), for the locally owned rows of a dense n x m block B, as
+         * the local rows of n x m results (collective).
+         */
+        std::vector<Eigen::MatrixXd>
+        multiply(
+          const std::vector<const physics::MatrixParts::Coefficients *> &c,
+          Eigen::Ref<const Eigen::MatrixXd> B) const;
+
+      private:
+        struct Data;
+        std::unique_ptr<Data> data;
+      };
 
       /**
        * The locally owned rows of the sparse matrix @p A that hold a

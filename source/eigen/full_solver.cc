@@ -152,7 +152,7 @@ namespace squeal
                FullSolveReport               *report)
     {
       const auto          start = std::chrono::steady_clock::now();
-      const PointMatrices A(model, point);
+      const PointMatrices A(model, point, band.store_products);
       const PETScMatrix  &M = A.M, &K = A.K, &K_s = A.K_s;
       const double        w_t    = 2. * numbers::PI * band.target_frequency;
       const auto          square = [](const double f) {
@@ -380,7 +380,7 @@ namespace squeal
       if (frequency.size() != start.size())
         throw std::logic_error("solve_on_iterates: one frequency per vector");
       const auto          t0 = std::chrono::steady_clock::now();
-      const PointMatrices AP(model, point);
+      const PointMatrices AP(model, point, band.store_products);
       const PETScMatrix  &M = AP.M, &K_s = AP.K_s;
       const IndexSet      owned = M.locally_owned_range_indices();
       const int           n     = owned.n_elements();
@@ -458,7 +458,10 @@ namespace squeal
                              const BandOptions          &band)
       : model(model)
       , band(band)
-    {}
+    {
+      if (band.store_products)
+        parts = std::make_unique<const internal::PartsProduct>(model);
+    }
 
     PairRefiner::~PairRefiner() = default;
 
@@ -488,14 +491,19 @@ namespace squeal
           ++n_factorisations;
           seconds_factorising += seconds_since(start);
         }
-      model.damping(point, C);
-      model.stiffness(point, K);
+      if (!parts)
+        {
+          model.damping(point, C);
+          model.stiffness(point, K);
+        }
       if (band.store_products && start.MV.cols() != start.V.cols())
         throw std::logic_error(
           "PairRefiner::refine: the projection has no products "
           "(ReducedModel::projection(p, true) with stored products)");
-      Subspace           s(M, C, K, std::move(start), band.store_products);
-      const unsigned int n_pairs = lambda.size();
+      Subspace s(M, C, K, std::move(start), band.store_products);
+      if (parts)
+        s.use_parts(*parts, c);
+      const unsigned int                   n_pairs = lambda.size();
       std::vector<internal::ProjectedPair> pairs(n_pairs);
       for (unsigned int j = 0; j < n_pairs; ++j)
         pairs[j] = {lambda[j], q[j]};

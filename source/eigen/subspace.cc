@@ -65,14 +65,21 @@ namespace squeal
       } // namespace
 
       PointMatrices::PointMatrices(const physics::MatrixParts    &model,
-                                   const parameters::ScalarPoint &point)
+                                   const parameters::ScalarPoint &point,
+                                   const bool                     with_parts)
+        : coefficients(model.coefficients(point))
       {
         model.mass(point, M);
         physics::store_nonzeros_only(M,
                                      M.locally_owned_range_indices(),
                                      M.get_mpi_communicator());
-        model.stiffness(point, K);
-        model.damping(point, C);
+        if (with_parts)
+          parts = std::make_unique<const PartsProduct>(model);
+        else
+          {
+            model.stiffness(point, K);
+            model.damping(point, C);
+          }
         model.symmetric_stiffness(point, K_s);
       }
 
@@ -94,7 +101,10 @@ namespace squeal
         , K(A.K)
         , comm(A.M.get_mpi_communicator())
         , stored(stored)
-      {}
+      {
+        if (A.parts)
+          use_parts(*A.parts, A.coefficients);
+      }
 
       Subspace::Subspace(const PETScMatrix &M,
                          const PETScMatrix &C,
@@ -135,7 +145,34 @@ namespace squeal
       Eigen::MatrixXd
       Subspace::damping_times(Eigen::Ref<const Eigen::MatrixXd> N) const
       {
+        if (parts)
+          return damping_and_stiffness_times(N)[0];
         return damping_times(static_cast<Mat>(C), N);
+      }
+
+      void
+      Subspace::use_parts(const PartsProduct                      &p,
+                          const physics::MatrixParts::Combination &c)
+      {
+        parts        = &p;
+        coefficients = c;
+      }
+
+      std::array<Eigen::MatrixXd, 2>
+      Subspace::damping_and_stiffness_times(
+        Eigen::Ref<const Eigen::MatrixXd> N) const
+      {
+        if (!parts)
+          return {{damping_times(static_cast<Mat>(C), N), multiply(K, N)}};
+        auto CK =
+          parts->multiply({&coefficients.damping, &coefficients.stiffness}, N);
+        if (U.cols() > 0)
+          {
+            Eigen::MatrixXd c = U.transpose() * N;
+            sum_over_ranks(c, comm);
+            CK[0] += U * (d.asDiagonal() * c);
+          }
+        return {{std::move(CK[0]), std::move(CK[1])}};
       }
 
       std::array<Eigen::MatrixXd, 3>
@@ -143,8 +180,9 @@ namespace squeal
       {
         if (stored)
           return {{WM * Q, WC * Q, WK * Q}};
-        const Eigen::MatrixXd X = V * Q;
-        return {{multiply(M, X), damping_times(X), multiply(K, X)}};
+        const Eigen::MatrixXd X  = V * Q;
+        auto                  CK = damping_and_stiffness_times(X);
+        return {{multiply(M, X), std::move(CK[0]), std::move(CK[1])}};
       }
 
       void
@@ -255,11 +293,18 @@ namespace squeal
             Mr = project(V, NM);
             if (stored)
               {
+                auto CK = damping_and_stiffness_times(V);
                 take(WM, storage[1], std::move(NM));
-                take(WC, storage[2], damping_times(V));
-                take(WK, storage[3], multiply(K, V));
+                take(WC, storage[2], std::move(CK[0]));
+                take(WK, storage[3], std::move(CK[1]));
                 Cr = project(V, WC);
                 Kr = project(V, WK);
+              }
+            else if (parts)
+              {
+                const auto CK = damping_and_stiffness_times(V);
+                Cr            = project(V, CK[0]);
+                Kr            = project(V, CK[1]);
               }
             else
               {
@@ -287,7 +332,8 @@ namespace squeal
         };
         if (stored)
           {
-            Eigen::MatrixXd NC = damping_times(N), NK = multiply(K, N);
+            auto             CK = damping_and_stiffness_times(N);
+            Eigen::MatrixXd &NC = CK[0], &NK = CK[1];
             grow_mass(NM);
             grow(Cr, NC, project(N, WC));
             grow(Kr, NK, project(N, WK));
@@ -305,8 +351,10 @@ namespace squeal
               }
             grow_mass(NM);
             NM.resize(0, 0);
-            grow(Cr, damping_times(N), project(damping_times(Ct->t, N), V));
-            grow(Kr, multiply(K, N), project(multiply(Kt->t, N), V));
+            auto CK = damping_and_stiffness_times(N);
+            grow(Cr, CK[0], project(damping_times(Ct->t, N), V));
+            CK[0].resize(0, 0);
+            grow(Kr, CK[1], project(multiply(Kt->t, N), V));
           }
         extend(V, storage[0], N);
       }

@@ -28,15 +28,21 @@ namespace squeal
        * M, C, K and K_s of a model at a point (n x n each); M on its
        * nonzeros only (a third of the common pattern: no coupling between
        * displacement components), which every M product of the
-       * eigensolvers and the subspace reads.
+       * eigensolvers and the subspace reads. With parts, the model's
+       * parts for the products C N and K N (PartsProduct) instead of C
+       * and K, which stay empty (for a subspace with stored products,
+       * which never needs their transposes).
        * @throws std::runtime_error if PETSc fails.
        */
       struct PointMatrices
       {
-        PETScMatrix M, C, K, K_s;
+        PETScMatrix                         M, C, K, K_s;
+        physics::MatrixParts::Combination   coefficients;
+        std::unique_ptr<const PartsProduct> parts;
 
         PointMatrices(const physics::MatrixParts    &model,
-                      const parameters::ScalarPoint &point);
+                      const parameters::ScalarPoint &point,
+                      const bool                     with_parts);
       };
 
       /** The transpose of a sparse matrix, owned (freed with it). */
@@ -89,6 +95,15 @@ namespace squeal
          * N^T A V = (A^T N)^T V).
          */
         std::unique_ptr<const Transposed> Ct, Kt;
+        /**
+         * With parts (use_parts()): C N and K N of new blocks and Ritz
+         * vectors from the model's parts and the point's coefficients, one
+         * pass over the parts instead of products with C and K; C and K
+         * are then only read for their transposes (without stored
+         * products).
+         */
+        const PartsProduct               *parts = nullptr;
+        physics::MatrixParts::Combination coefficients;
 
         /** An empty subspace of the model at a point. */
         Subspace(const PointMatrices &A, const bool stored);
@@ -104,6 +119,18 @@ namespace squeal
         Subspace(const Subspace &) = delete;
         Subspace &
         operator=(const Subspace &) = delete;
+
+        /**
+         * C N and K N from @p p with the point's coefficients @p c (see
+         * #parts); @p p must outlive the subspace.
+         */
+        void
+        use_parts(const PartsProduct                      &p,
+                  const physics::MatrixParts::Combination &c);
+
+        /** C N and K N (n x m each for the local rows of an n x m N). */
+        std::array<Eigen::MatrixXd, 2>
+        damping_and_stiffness_times(Eigen::Ref<const Eigen::MatrixXd> N) const;
 
         /**
          * A N + U diag(d) U^T N (n x m for the local rows of an n x m

@@ -68,6 +68,11 @@ namespace squeal
 {
   namespace eigen
   {
+    namespace internal
+    {
+      class PartsProduct;
+    }
+
     /** What a full solve counted, found and how far it converged. */
     struct FullSolveReport
     {
@@ -238,8 +243,10 @@ namespace squeal
       std::vector<double>           key; ///< M and K_s coefficients of P
       PETScMatrix                   P;
       std::unique_ptr<DirectSolver> solver;
-      unsigned int                  n_factorisations    = 0;
-      double                        seconds_factorising = 0.;
+      /// the model's parts for the products C N and K N (stored products)
+      std::unique_ptr<const internal::PartsProduct> parts;
+      unsigned int                                  n_factorisations    = 0;
+      double                                        seconds_factorising = 0.;
     };
   } // namespace eigen
 } // namespace squeal
