@@ -255,6 +255,39 @@ namespace squeal
           PetscInt n_ghost;
           PetscSF  sf = nullptr;
         };
+
+        // An AIJ matrix's local blocks: the diagonal one (the matrix
+        // itself for MATSEQAIJ) and, for MATMPIAIJ, the off-diagonal one
+        // with the global indices (colmap) of its n_ghost columns.
+        struct AijBlocks
+        {
+          Mat             diagonal = nullptr, off_diagonal = nullptr;
+          const PetscInt *colmap  = nullptr;
+          PetscInt        n_ghost = 0;
+          bool            is_mpi  = false;
+
+          explicit AijBlocks(Mat a)
+            : diagonal(a)
+          {
+            PetscBool mpi = PETSC_FALSE, seq = PETSC_FALSE;
+            PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a),
+                                   MATMPIAIJ,
+                                   &mpi);
+            PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a),
+                                   MATSEQAIJ,
+                                   &seq);
+            if (!mpi && !seq)
+              throw std::runtime_error(
+                "dense block: the sparse matrix is not of PETSc type AIJ");
+            is_mpi = mpi;
+            if (!is_mpi)
+              return;
+            if (MatMPIAIJGetSeqAIJ(a, &diagonal, &off_diagonal, &colmap) != 0)
+              throw std::runtime_error(
+                "dense block: MatMPIAIJGetSeqAIJ failed");
+            MatGetSize(off_diagonal, nullptr, &n_ghost);
+          }
+        };
       } // namespace
 
       Eigen::MatrixXd
@@ -271,33 +304,14 @@ namespace squeal
         // (PETSc 3.18's AIJ times dense streams the matrix once per four
         // columns); the off-process part (MPIAIJ) with ghost rows of B
         // gathered by a PETSc star forest.
-        Mat             a        = A;
-        Mat             diagonal = a, off_diagonal = nullptr;
-        const PetscInt *colmap = nullptr;
-        PetscBool       is_mpi = PETSC_FALSE;
-        PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a),
-                               MATMPIAIJ,
-                               &is_mpi);
-        PetscBool is_seq = PETSC_FALSE;
-        PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a),
-                               MATSEQAIJ,
-                               &is_seq);
-        if (!is_mpi && !is_seq)
-          throw std::runtime_error(
-            "dense block: the sparse matrix is not of PETSc type AIJ");
-        if (is_mpi &&
-            MatMPIAIJGetSeqAIJ(a, &diagonal, &off_diagonal, &colmap) != 0)
-          throw std::runtime_error("dense block: MatMPIAIJGetSeqAIJ failed");
-        PetscInt n_ghost = 0;
-        if (off_diagonal)
-          MatGetSize(off_diagonal, nullptr, &n_ghost);
-        const CsrView                    d(diagonal);
+        const AijBlocks                  b(A);
+        const CsrView                    d(b.diagonal);
         std::unique_ptr<const CsrView>   o;
         std::unique_ptr<const GhostRows> ghosts;
-        if (is_mpi)
+        if (b.is_mpi)
           {
-            o      = std::make_unique<const CsrView>(off_diagonal);
-            ghosts = std::make_unique<const GhostRows>(a, n_ghost, colmap);
+            o      = std::make_unique<const CsrView>(b.off_diagonal);
+            ghosts = std::make_unique<const GhostRows>(A, b.n_ghost, b.colmap);
           }
         Eigen::MatrixXd result(B.rows(), B.cols());
         // blocks of 64 columns keep the rows of B that a row of A reads in
@@ -333,42 +347,17 @@ namespace squeal
       {
         Data &d = *data;
         // the ghost columns of every part, in one ascending numbering
-        std::vector<PetscInt> ghost_columns;
-        struct Blocks
-        {
-          Mat             diagonal = nullptr, off_diagonal = nullptr;
-          const PetscInt *colmap  = nullptr;
-          PetscInt        n_ghost = 0;
-        };
-        std::vector<Blocks> blocks(model.size());
-        bool                is_mpi = false;
+        std::vector<PetscInt>  ghost_columns;
+        std::vector<AijBlocks> blocks;
+        bool                   is_mpi = false;
         for (unsigned int k = 0; k < model.size(); ++k)
           {
-            Mat       a   = model.matrix(k);
-            PetscBool mpi = PETSC_FALSE, seq = PETSC_FALSE;
-            PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a),
-                                   MATMPIAIJ,
-                                   &mpi);
-            PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a),
-                                   MATSEQAIJ,
-                                   &seq);
-            if (!mpi && !seq)
-              throw std::runtime_error(
-                "dense block: the sparse matrix is not of PETSc type AIJ");
-            Blocks &b  = blocks[k];
-            b.diagonal = a;
-            if (mpi)
-              {
-                is_mpi = true;
-                if (MatMPIAIJGetSeqAIJ(
-                      a, &b.diagonal, &b.off_diagonal, &b.colmap) != 0)
-                  throw std::runtime_error(
-                    "dense block: MatMPIAIJGetSeqAIJ failed");
-                MatGetSize(b.off_diagonal, nullptr, &b.n_ghost);
-                ghost_columns.insert(ghost_columns.end(),
-                                     b.colmap,
-                                     b.colmap + b.n_ghost);
-              }
+            const AijBlocks &b = blocks.emplace_back(model.matrix(k));
+            is_mpi             = is_mpi || b.is_mpi;
+            if (b.is_mpi)
+              ghost_columns.insert(ghost_columns.end(),
+                                   b.colmap,
+                                   b.colmap + b.n_ghost);
           }
         std::sort(ghost_columns.begin(), ghost_columns.end());
         ghost_columns.erase(std::unique(ghost_columns.begin(),
@@ -386,7 +375,7 @@ namespace squeal
                                                        ghost_columns.data());
         for (unsigned int k = 0; k < model.size(); ++k)
           {
-            const Blocks                  &b = blocks[k];
+            const AijBlocks               &b = blocks[k];
             const CsrView                  diagonal(b.diagonal);
             std::unique_ptr<const CsrView> off;
             if (b.off_diagonal)
