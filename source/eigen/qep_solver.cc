@@ -76,7 +76,11 @@ namespace squeal
                 "EPSSetWhichEigenpairs");
           ST st;
           check(EPSGetST(eps, &st), "EPSGetST");
-          internal::shift_invert_with_mumps(st, symmetric);
+          void *const ksp = internal::shift_invert_with_mumps(st, symmetric);
+          // symmetric: the modes kept are purified below in one block
+          // solve; SLEPc's purification is one solve per converged vector
+          if (symmetric)
+            check(EPSSetPurify(eps, PETSC_FALSE), "EPSSetPurify");
           check(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT),
                 "EPSSetDimensions");
           check(EPSSetTolerances(eps, options.tolerance, 2000),
@@ -99,6 +103,26 @@ namespace squeal
                   if (ki == 0)
                     m.im = 0;
                   modes.push_back(std::move(m));
+                }
+            }
+          if (symmetric && !modes.empty() && (farthest >= needed || nconv >= n))
+            {
+              // one step of inverse iteration for all of them, x <-
+              // (K - sigma M)^-1 M x (it removes what the Krylov basis
+              // left along the other eigenvectors, as SLEPc's purification
+              // does), then unit M-norm
+              const IndexSet  owned = M.locally_owned_range_indices();
+              Eigen::MatrixXd X(owned.n_elements(), modes.size());
+              for (unsigned int j = 0; j < modes.size(); ++j)
+                X.col(j) = internal::local_part(modes[j].re, owned);
+              X = internal::solve_block(ksp, K, internal::multiply(M, X));
+              Eigen::MatrixXd norms =
+                X.cwiseProduct(internal::multiply(M, X)).colwise().sum();
+              internal::sum_over_ranks(norms, M.get_mpi_communicator());
+              for (unsigned int j = 0; j < modes.size(); ++j)
+                {
+                  X.col(j) /= std::sqrt(norms(0, j));
+                  internal::set_local_part(modes[j].re, X.col(j));
                 }
             }
           EPSDestroy(&eps);
