@@ -476,8 +476,11 @@ namespace squeal
       k.insert(k.end(),
                c.symmetric_stiffness.begin(),
                c.symmetric_stiffness.end());
+      // with the parts, M(p), C(p) and K(p) are never formed: the
+      // subspace's products come from the parts
       PETScMatrix M, C, K;
-      model.mass(point, M);
+      if (!parts || !solver || k != key)
+        model.mass(point, M);
       if (!solver || k != key)
         {
           // P = K_s + (2 pi f_t)^2 M: positive definite, one Cholesky
@@ -500,9 +503,14 @@ namespace squeal
         throw std::logic_error(
           "PairRefiner::refine: the projection has no products "
           "(ReducedModel::projection(p, true) with stored products)");
-      Subspace s(M, C, K, std::move(start), band.store_products);
+      Subspace s(M,
+                 C,
+                 K,
+                 std::move(start),
+                 band.store_products,
+                 model.matrix(0).get_mpi_communicator());
       if (parts)
-        s.use_parts(*parts, c);
+        s.use_parts(*parts, c, true);
       const unsigned int                   n_pairs = lambda.size();
       std::vector<internal::ProjectedPair> pairs(n_pairs);
       for (unsigned int j = 0; j < n_pairs; ++j)

@@ -110,11 +110,12 @@ namespace squeal
                          const PETScMatrix &C,
                          const PETScMatrix &K,
                          Projection       &&start,
-                         const bool         stored)
+                         const bool         stored,
+                         MPI_Comm           comm)
         : M(M)
         , C(C)
         , K(K)
-        , comm(M.get_mpi_communicator())
+        , comm(comm)
         , stored(stored)
         , Mr(std::move(start.Mr))
         , Cr(std::move(start.Cr))
@@ -152,10 +153,20 @@ namespace squeal
 
       void
       Subspace::use_parts(const PartsProduct                      &p,
-                          const physics::MatrixParts::Combination &c)
+                          const physics::MatrixParts::Combination &c,
+                          const bool                               mass)
       {
-        parts        = &p;
-        coefficients = c;
+        parts           = &p;
+        coefficients    = c;
+        mass_from_parts = mass;
+      }
+
+      Eigen::MatrixXd
+      Subspace::mass_times(Eigen::Ref<const Eigen::MatrixXd> N) const
+      {
+        if (mass_from_parts)
+          return parts->multiply({&coefficients.mass}, N)[0];
+        return multiply(M, N);
       }
 
       std::array<Eigen::MatrixXd, 2>
@@ -182,7 +193,7 @@ namespace squeal
           return {{WM * Q, WC * Q, WK * Q}};
         const Eigen::MatrixXd X  = V * Q;
         auto                  CK = damping_and_stiffness_times(X);
-        return {{multiply(M, X), std::move(CK[0]), std::move(CK[1])}};
+        return {{mass_times(X), std::move(CK[0]), std::move(CK[1])}};
       }
 
       void
@@ -195,7 +206,7 @@ namespace squeal
         Eigen::MatrixXd Ksr = V.transpose() * multiply(K_s, V);
         sum_over_ranks(Ksr, comm);
         const auto m = internal::subspace_modal_damping(Mr, Ksr, modal);
-        U = stored ? Eigen::MatrixXd(WM * m.Psi) : multiply(M, V * m.Psi);
+        U = stored ? Eigen::MatrixXd(WM * m.Psi) : mass_times(V * m.Psi);
         d = m.d;
         if (stored)
           WC += WM * m.B;
@@ -211,7 +222,7 @@ namespace squeal
           // V^T M X
           Eigen::MatrixXd coefficients =
             stored ? Eigen::MatrixXd(WM.transpose() * X) :
-                     Eigen::MatrixXd(V.transpose() * multiply(M, X));
+                     Eigen::MatrixXd(V.transpose() * mass_times(X));
           sum_over_ranks(coefficients, comm);
           coefficients = Mr.llt().solve(coefficients);
           X -= V * coefficients;
@@ -222,7 +233,7 @@ namespace squeal
         Eigen::VectorXd in_span = Eigen::VectorXd::Zero(T.cols());
         if (V.cols() > 0)
           in_span = remove_span(T);
-        Eigen::MatrixXd MT = multiply(M, T);
+        Eigen::MatrixXd MT = mass_times(T);
         // the squared M-norms of what is left, 1 x m
         Eigen::MatrixXd remainder = T.cwiseProduct(MT).colwise().sum();
         sum_over_ranks(remainder, comm);
@@ -254,7 +265,7 @@ namespace squeal
             for (unsigned int a = 0; a < again.size(); ++a)
               X.col(a) = T.col(again[a]);
             remove_span(X);
-            const Eigen::MatrixXd MX = multiply(M, X);
+            const Eigen::MatrixXd MX = mass_times(X);
             for (unsigned int a = 0; a < again.size(); ++a)
               {
                 T.col(again[a])  = X.col(a);

@@ -104,16 +104,22 @@ namespace squeal
          */
         const PartsProduct               *parts = nullptr;
         physics::MatrixParts::Combination coefficients;
+        /** M N from #parts too (M is then not read at all). */
+        bool mass_from_parts = false;
 
         /** An empty subspace of the model at a point. */
         Subspace(const PointMatrices &A, const bool stored);
 
-        /** The subspace of a reduced basis (with its products if stored). */
+        /**
+         * The subspace of a reduced basis (with its products if stored),
+         * its vectors distributed over @p comm.
+         */
         Subspace(const PETScMatrix &M,
                  const PETScMatrix &C,
                  const PETScMatrix &K,
                  Projection       &&start,
-                 const bool         stored);
+                 const bool         stored,
+                 MPI_Comm           comm);
 
         /** Not copied or moved: V, WM, WC and WK point into #storage. */
         Subspace(const Subspace &) = delete;
@@ -126,7 +132,12 @@ namespace squeal
          */
         void
         use_parts(const PartsProduct                      &p,
-                  const physics::MatrixParts::Combination &c);
+                  const physics::MatrixParts::Combination &c,
+                  const bool                               mass = false);
+
+        /** M N (n x m for the local rows of an n x m N). */
+        Eigen::MatrixXd
+        mass_times(Eigen::Ref<const Eigen::MatrixXd> N) const;
 
         /** C N and K N (n x m each for the local rows of an n x m N). */
         std::array<Eigen::MatrixXd, 2>
