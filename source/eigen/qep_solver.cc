@@ -105,7 +105,8 @@ namespace squeal
                   modes.push_back(std::move(m));
                 }
             }
-          if (symmetric && !modes.empty() && (farthest >= needed || nconv >= n))
+          const bool covered = farthest >= needed || nconv >= n;
+          if (symmetric && !modes.empty() && covered)
             {
               // one step of inverse iteration for all of them, x <-
               // (K - sigma M)^-1 M x (it removes what the Krylov basis
@@ -126,7 +127,7 @@ namespace squeal
                 }
             }
           EPSDestroy(&eps);
-          if (farthest >= needed || nconv >= n)
+          if (covered)
             {
               std::sort(modes.begin(),
                         modes.end(),

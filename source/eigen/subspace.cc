@@ -129,17 +129,23 @@ namespace squeal
         take(WK, storage[3], std::move(start.KV));
       }
 
+      void
+      Subspace::add_modal_damping(Eigen::MatrixXd                  &CN,
+                                  Eigen::Ref<const Eigen::MatrixXd> N) const
+      {
+        if (U.cols() == 0)
+          return;
+        Eigen::MatrixXd c = U.transpose() * N;
+        sum_over_ranks(c, comm);
+        CN += U * (d.asDiagonal() * c);
+      }
+
       Eigen::MatrixXd
       Subspace::damping_times(const Mat                         A,
                               Eigen::Ref<const Eigen::MatrixXd> N) const
       {
         Eigen::MatrixXd CN = multiply(A, N);
-        if (U.cols() > 0)
-          {
-            Eigen::MatrixXd c = U.transpose() * N;
-            sum_over_ranks(c, comm);
-            CN += U * (d.asDiagonal() * c);
-          }
+        add_modal_damping(CN, N);
         return CN;
       }
 
@@ -177,12 +183,7 @@ namespace squeal
           return {{damping_times(static_cast<Mat>(C), N), multiply(K, N)}};
         auto CK =
           parts->multiply({&coefficients.damping, &coefficients.stiffness}, N);
-        if (U.cols() > 0)
-          {
-            Eigen::MatrixXd c = U.transpose() * N;
-            sum_over_ranks(c, comm);
-            CK[0] += U * (d.asDiagonal() * c);
-          }
+        add_modal_damping(CK[0], N);
         return {{std::move(CK[0]), std::move(CK[1])}};
       }
 
@@ -311,12 +312,6 @@ namespace squeal
                 Cr = project(V, WC);
                 Kr = project(V, WK);
               }
-            else if (parts)
-              {
-                const auto CK = damping_and_stiffness_times(V);
-                Cr            = project(V, CK[0]);
-                Kr            = project(V, CK[1]);
-              }
             else
               {
                 Cr = project(V, damping_times(V));
@@ -362,10 +357,8 @@ namespace squeal
               }
             grow_mass(NM);
             NM.resize(0, 0);
-            auto CK = damping_and_stiffness_times(N);
-            grow(Cr, CK[0], project(damping_times(Ct->t, N), V));
-            CK[0].resize(0, 0);
-            grow(Kr, CK[1], project(multiply(Kt->t, N), V));
+            grow(Cr, damping_times(N), project(damping_times(Ct->t, N), V));
+            grow(Kr, multiply(K, N), project(multiply(Kt->t, N), V));
           }
         extend(V, storage[0], N);
       }

@@ -98,9 +98,9 @@ namespace squeal
         /**
          * With parts (use_parts()): C N and K N of new blocks and Ritz
          * vectors from the model's parts and the point's coefficients, one
-         * pass over the parts instead of products with C and K; C and K
-         * are then only read for their transposes (without stored
-         * products).
+         * pass over the parts instead of products with C and K, which
+         * are then not read (set for stored products only: without them
+         * the projection's new rows need C^T and K^T).
          */
         const PartsProduct               *parts = nullptr;
         physics::MatrixParts::Combination coefficients;
@@ -138,6 +138,11 @@ namespace squeal
         /** M N (n x m for the local rows of an n x m N). */
         Eigen::MatrixXd
         mass_times(Eigen::Ref<const Eigen::MatrixXd> N) const;
+
+        /** CN += U diag(d) U^T N: the modal damping's part of C N. */
+        void
+        add_modal_damping(Eigen::MatrixXd                  &CN,
+                          Eigen::Ref<const Eigen::MatrixXd> N) const;
 
         /** C N and K N (n x m each for the local rows of an n x m N). */
         std::array<Eigen::MatrixXd, 2>
