@@ -12,8 +12,10 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # ones behind libblas.so.3 (MUMPS factorisations, SLEPc orthogonalisation and
 # the dense eigenproblems of the reduced sweep run several times faster).
 # calculix-ccx: CalculiX 2.20, the peer code of end_to_end/calculix_two_blocks
-# and of the side-by-side benchmarks.
+# and of the side-by-side benchmarks. python3-h5py: end_to_end/cea_contact_history
+# writes its contact histories (contact_history.h5) with it.
 packages=(libdeal.ii-dev libeigen3-dev numdiff python3-matplotlib python3-numpy
+          python3-h5py
           openmpi-bin libopenmpi-dev cmake make g++ libopenblas0-pthread
           libopencv-dev libopencv-contrib-dev libfftw3-dev libgmsh-dev
           libvtk9-dev zlib1g-dev clang-format python3-gmsh calculix-ccx)

@@ -90,6 +90,31 @@ namespace squeal
                         "exceeds this fraction of the shortest pad face "
                         "edge (0: never). The preload's elastic slips are "
                         "far below it, so it builds the segmentation once.");
+      prm.declare_entry(
+        "Contact state",
+        contact_state,
+        Patterns::Selection("preload|braking history"),
+        "The contact state a Scene/Analysis = preloaded cea is linearised "
+        "about. preload: this static preload, run first; the interface "
+        "(stiffness and friction coupling) is kept where the pad stays in "
+        "contact. braking history: no preload; the interface at each point "
+        "is scaled by the fraction of Contact history window that the "
+        "nearest pad node of a braking run's contact history (Contact "
+        "history) spent in contact, stick or slip: the time-averaged "
+        "interface of the transient's vibration, with its partial "
+        "separation.");
+      prm.declare_entry("Contact history",
+                        contact_history,
+                        Patterns::Anything(),
+                        "Contact state = braking history: the braking run's "
+                        "contact_history.h5 (its pad nodes must cover this "
+                        "scene's pad faces: the same scene).");
+      prm.declare_entry("Contact history window",
+                        "",
+                        Patterns::Anything(),
+                        "Contact state = braking history: start, end [s] of "
+                        "the history's samples that are averaged (e.g. the "
+                        "limit cycle); empty: every sample.");
       prm.leave_subsection();
     }
 
@@ -97,14 +122,41 @@ namespace squeal
     Preload::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Preload");
-      normal_force         = prm.get_double("Normal force");
-      friction             = prm.get("Friction");
-      normal_law           = prm.get("Normal contact law");
-      search_distance      = prm.get_double("Search distance");
-      load_steps           = prm.get_integer("Load steps");
-      disc_slip            = prm.get_double("Disc slip per step");
-      segmentation_refresh = prm.get_double("Segmentation refresh");
+      normal_force             = prm.get_double("Normal force");
+      friction                 = prm.get("Friction");
+      normal_law               = prm.get("Normal contact law");
+      search_distance          = prm.get_double("Search distance");
+      load_steps               = prm.get_integer("Load steps");
+      disc_slip                = prm.get_double("Disc slip per step");
+      segmentation_refresh     = prm.get_double("Segmentation refresh");
+      contact_state            = prm.get("Contact state");
+      contact_history          = prm.get("Contact history");
+      const std::string window = prm.get("Contact history window");
       prm.leave_subsection();
+      check(contact_state != "braking history" || !contact_history.empty(),
+            "Preload/Contact state = braking history needs Preload/Contact "
+            "history, the braking run's contact_history.h5");
+      contact_window.clear();
+      if (window.find_first_not_of(" \t") != std::string::npos)
+        {
+          bool ok = true;
+          try
+            {
+              contact_window = Utilities::string_to_double(
+                Utilities::split_string_list(window, ','));
+            }
+          catch (...)
+            {
+              ok = false;
+            }
+          check(ok && contact_window.size() == 2 &&
+                  std::isfinite(contact_window[0]) &&
+                  std::isfinite(contact_window[1]) &&
+                  contact_window[0] < contact_window[1],
+                "Preload/Contact history window = '" + window +
+                  "': give start, end in seconds with start < end (or "
+                  "leave it empty for every sample)");
+        }
       check(disc_slip == 0. || friction == "coulomb",
             "Preload/Disc slip per step = " + str(disc_slip) +
               " needs Preload/Friction = coulomb (got " + friction +

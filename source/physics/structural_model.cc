@@ -446,7 +446,8 @@ namespace squeal
                   kept.push_back(p);
               }
             pcout << "Interface: " << kept.size() << " of " << points.size()
-                  << " quadrature points in contact after the preload"
+                  << " quadrature points with contact (the contact "
+                     "state's interface weight above 0)"
                   << std::endl;
             points.swap(kept);
           }

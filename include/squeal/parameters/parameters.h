@@ -455,6 +455,16 @@ namespace squeal
       /// load step once the relative tangential displacement since the
       /// last one exceeds this fraction of the shortest pad face edge
       double segmentation_refresh = 0.1;
+      /// the contact state a `preloaded cea` is linearised about: `preload`
+      /// (the static preload, run first) or `braking history` (each pad
+      /// node's fraction of time in contact in a braking run's
+      /// contact_history.h5, over contact_window; no preload is run)
+      std::string contact_state = "preload";
+      /// `braking history`: the braking run's contact_history.h5
+      std::string contact_history;
+      /// `braking history`: [start, end] of the samples used [s]; empty:
+      /// every sample of the history
+      std::vector<double> contact_window;
       /** Declares the subsection's entries: defaults, ranges, help (SI units).
        */
       void

@@ -345,7 +345,10 @@ namespace squeal
        * setup_and_assemble(); unset means 1 everywhere. A CEA about a preload
        * sets it to 1 where the preload's pad nodes are in contact and 0
        * where they separated, so that the interface stiffness and the
-       * friction coupling live on the active set only.
+       * friction coupling live on the active set only; a CEA about a
+       * braking run's contact history sets it to the nearest pad node's
+       * fraction of time in contact (in [0, 1]). A point of weight 0 is
+       * dropped.
        */
       std::function<double(const dealii::Point<3> &)> interface_mask;
 
