@@ -318,7 +318,9 @@ namespace squeal
                         band,
                         es.reduced_band_factor,
                         es.reduced_enrichment ? es.reduced_enrichment_depth : 0,
-                        pcout);
+                        pcout,
+                        first_point_full.empty() ? nullptr :
+                                                   &first_point_symmetric);
         }
 
       const auto         sweep    = sweep_points();

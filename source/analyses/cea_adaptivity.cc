@@ -697,7 +697,8 @@ namespace squeal
       for (;; ++cycle)
         {
           const auto t0 = std::chrono::steady_clock::now();
-          pairs         = eigen::solve_full(model->parts(), p0, band, quiet);
+          pairs         = eigen::solve_full(
+            model->parts(), p0, band, quiet, nullptr, &first_point_symmetric);
           const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
               .count();

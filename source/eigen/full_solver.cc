@@ -149,7 +149,8 @@ namespace squeal
                const parameters::ScalarPoint &point,
                const BandOptions             &band,
                ConditionalOStream            &pcout,
-               FullSolveReport               *report)
+               FullSolveReport               *report,
+               KnownSymmetricModes           *symmetric_modes)
     {
       const auto          start = std::chrono::steady_clock::now();
       const PointMatrices A(model, point, band.store_products);
@@ -249,6 +250,13 @@ namespace squeal
           std::to_string(r.symmetric_in_basis) + " (or " + not_semi_definite() +
           ")");
       const double t_symmetric = seconds_since(start);
+      if (symmetric_modes)
+        {
+          symmetric_modes->mass                = c.mass;
+          symmetric_modes->symmetric_stiffness = c.symmetric_stiffness;
+          symmetric_modes->top_hz              = f_top;
+          symmetric_modes->modes               = modes;
+        }
 
       const IndexSet  owned = M.locally_owned_range_indices();
       const int       n     = owned.n_elements();

@@ -83,8 +83,9 @@ namespace squeal
                         const std::vector<parameters::ScalarPoint> &samples,
                         const BandOptions                          &band,
                         const double                                band_factor,
-                        const unsigned int  enrichment_depth,
-                        ConditionalOStream &pcout)
+                        const unsigned int         enrichment_depth,
+                        ConditionalOStream        &pcout,
+                        const KnownSymmetricModes *known)
     {
       make_reference_mass(model);
       std::vector<Eigen::VectorXd> columns;
@@ -103,8 +104,22 @@ namespace squeal
           physics::store_nonzeros_only(M, owned, comm);
           pcout << "  reduced basis: sample " << i + 1 << " of "
                 << samples.size() << std::endl;
-          const auto modes =
-            solve_undamped(M, K, sample_band, band_factor, true, pcout);
+          const double              top = band_factor * band.f_max;
+          const auto                c   = model.coefficients(s);
+          std::vector<UndampedMode> modes;
+          if (known && known->top_hz >= top && known->mass == c.mass &&
+              known->symmetric_stiffness == c.symmetric_stiffness)
+            {
+              const double w_top = 2. * numbers::PI * top;
+              for (const UndampedMode &mode : known->modes)
+                if (mode.omega2.real() < w_top * w_top)
+                  modes.push_back(mode);
+              pcout << "  the full solve's " << modes.size() << " modes up to "
+                    << top << " Hz at these mass and stiffness, reused"
+                    << std::endl;
+            }
+          else
+            modes = solve_undamped(M, K, sample_band, band_factor, true, pcout);
           largest_sample = std::max<unsigned int>(largest_sample, modes.size());
           // Enrichment, one block solve per level with a Cholesky
           // factorisation of K_s. Rayleigh damping beta K_s is not

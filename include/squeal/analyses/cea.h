@@ -186,7 +186,11 @@ namespace squeal
       /// it again (same model, same point, same band); empty without
       /// adaptive cycles or a frequency tolerance.
       std::vector<eigen::EigenPair> first_point_full;
-      eigen::ReducedModel           reduced;
+      /// The modes of (K_s, M) of that full solve, which the reduced
+      /// basis' sample with the same M and K_s takes (empty with
+      /// first_point_full).
+      eigen::KnownSymmetricModes first_point_symmetric;
+      eigen::ReducedModel        reduced;
 
       /// The reduced basis' sample points: the ends of each swept
       /// structural parameter's range and evenly spaced values between.

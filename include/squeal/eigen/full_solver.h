@@ -116,7 +116,10 @@ namespace squeal
      * Im lambda / 2 pi in [band.f_min, band.f_max] [Hz] at the parameter
      * point @p p, sorted by frequency, each with its relative residual on
      * the full model (see the file's description for the method; counts
-     * and residuals go to @p report when given). lambda in 1/s.
+     * and residuals go to @p report when given). lambda in 1/s. When
+     * @p symmetric is given, the modes of (K_s, M) the basis was built on
+     * (every one below its top frequency) are copied into it, for a
+     * reduced basis sample with the same M and K_s.
      * @throws std::runtime_error if a factorisation or an eigensolve
      *   fails, or the symmetric solve returns fewer modes than its
      *   inertia count.
@@ -126,7 +129,8 @@ namespace squeal
                const parameters::ScalarPoint &p,
                const BandOptions             &band,
                dealii::ConditionalOStream    &pcout,
-               FullSolveReport               *report = nullptr);
+               FullSolveReport               *report    = nullptr,
+               KnownSymmetricModes           *symmetric = nullptr);
 
     /** Where solve_on_iterates() spent its time. */
     struct IterateReport

@@ -65,6 +65,23 @@ namespace squeal
       Eigen::VectorXd modal_d; ///< see modal_U
     };
 
+    /**
+     * Modes of the symmetric problem (K_s, M) already found at some point
+     * (by a full solve, eigen::solve_full()), which a basis sample with the
+     * same M and K_s takes instead of solving again.
+     */
+    struct KnownSymmetricModes
+    {
+      /// the coefficients of M and K_s where the modes were found
+      /// (physics::MatrixParts::coefficients(); one per part)
+      physics::MatrixParts::Coefficients mass, symmetric_stiffness;
+      /// every mode of (K_s, M) below this frequency is in @ref modes
+      /// (counted by Sylvester inertia) [Hz]
+      double top_hz = 0.;
+      /// sorted by omega^2 [1/s^2], M-normalised, vectors of length n
+      std::vector<UndampedMode> modes;
+    };
+
     /** The projected model of a StructuralModel. */
     class ReducedModel
     {
@@ -79,6 +96,9 @@ namespace squeal
        *   1: the static response to the friction forces of verification A6;
        *   with depth >= 1 the response K^-1 K_n phi to the interface forces
        *   is added too)
+       * @param known modes found before (or nullptr): a sample whose M and
+       *   K_s coefficients equal theirs, and whose band they cover, takes
+       *   them (those below f_max * band_factor) instead of an eigensolve
        * @throws std::runtime_error if an eigensolve or factorisation fails.
        */
       void
@@ -87,7 +107,8 @@ namespace squeal
             const BandOptions                          &band,
             const double                                band_factor,
             const unsigned int                          enrichment_depth,
-            dealii::ConditionalOStream                 &pcout);
+            dealii::ConditionalOStream                 &pcout,
+            const KnownSymmetricModes                  *known = nullptr);
 
       /**
        * Projects on the span of the given vectors (length n each; linearly
