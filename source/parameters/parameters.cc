@@ -144,7 +144,8 @@ namespace squeal
               "); without a preload set it to 0 and refine the disc track "
               "by geometry with Mesh/Disc refinements under pad");
       check(preload.normal_law == "penalty" ||
-              scene.analysis != "preloaded cea",
+              scene.analysis != "preloaded cea" ||
+              preload.contact_state == "braking history",
             "Preload/Normal contact law = hard does not go with "
             "Scene/Analysis = preloaded cea: the CEA's interface is the "
             "tangent of the penalty law p = k_n x penetration, so the "

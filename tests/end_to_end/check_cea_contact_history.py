@@ -35,6 +35,9 @@ prm = os.path.abspath(prm)
 os.makedirs(work, exist_ok=True)
 os.chdir(work)
 K_N = 2.5895e12  # the TriboBrake's interface stiffness [N/m^3]
+# OpenMPI refuses to start as root unless told (CI runs as root).
+os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
 
 
 def run(name, extra, mpi=0, expect_ok=True):
