@@ -109,13 +109,17 @@ namespace squeal
         for (std::size_t k = 0; k < h.n_samples(); ++k)
           if (h.time[k] >= t0 && h.time[k] <= t1)
             samples.push_back(k);
-        if (samples.empty() || h.n_nodes() < 2)
+        if (h.n_nodes() < 2)
+          throw std::runtime_error(
+            "Preload/Contact history " + preload.contact_history + " has " +
+            std::to_string(h.n_nodes()) +
+            " pad node(s); a contact state needs the nodes of the pad faces");
+        if (samples.empty())
           {
             std::ostringstream what;
             what << "Preload/Contact history window: the history "
-                 << preload.contact_history << " has " << h.n_nodes()
-                 << " nodes and no sample in [" << t0 << ", " << t1
-                 << "] s (its samples span "
+                 << preload.contact_history << " has no sample in [" << t0
+                 << ", " << t1 << "] s (its samples span "
                  << (h.time.empty() ? 0. : h.time.front()) << " to "
                  << (h.time.empty() ? 0. : h.time.back())
                  << " s); give a window inside them, or none";
@@ -322,6 +326,7 @@ namespace squeal
                         first_point_full.empty() ? nullptr :
                                                    &first_point_symmetric);
         }
+      first_point_symmetric = eigen::KnownSymmetricModes(); // its memory
 
       const auto         sweep    = sweep_points();
       const unsigned int n_points = sweep.size();
