@@ -250,13 +250,6 @@ namespace squeal
           std::to_string(r.symmetric_in_basis) + " (or " + not_semi_definite() +
           ")");
       const double t_symmetric = seconds_since(start);
-      if (symmetric_modes)
-        {
-          symmetric_modes->mass                = c.mass;
-          symmetric_modes->symmetric_stiffness = c.symmetric_stiffness;
-          symmetric_modes->top_hz              = f_top;
-          symmetric_modes->modes               = modes;
-        }
 
       const IndexSet  owned = M.locally_owned_range_indices();
       const int       n     = owned.n_elements();
@@ -278,7 +271,15 @@ namespace squeal
           Phi = internal::solve_block(slepc->solver(), K_s, multiply(M, Phi));
           Phi *= (omega2.array() - sigma).matrix().asDiagonal();
         }
-      // the modes live on in Phi; the eigensolver's basis is not needed
+      // the modes live on in Phi (and in the caller's copy); the
+      // eigensolver's basis is not needed
+      if (symmetric_modes)
+        {
+          symmetric_modes->mass                = c.mass;
+          symmetric_modes->symmetric_stiffness = c.symmetric_stiffness;
+          symmetric_modes->top_hz              = f_top;
+          symmetric_modes->modes               = std::move(modes);
+        }
       modes.clear();
       modes.shrink_to_fit();
       if (slepc)

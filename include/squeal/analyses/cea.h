@@ -24,6 +24,7 @@
 #include <squeal/physics/structural_model.h>
 
 #include <complex>
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -137,6 +138,22 @@ namespace squeal
       mode_indicator(const std::vector<eigen::EigenPair> &pairs,
                      const parameters::ScalarPoint       &values,
                      const std::vector<double>           &weights = {}) const;
+      /**
+       * Scene/Analysis = preloaded cea: sets the model's interface mask
+       * from the contact state (Preload/Contact state: the static preload,
+       * run here into preload/, or a braking run's contact history) and
+       * the pad nodes' contact pressure into @p pressure (points [m],
+       * pressures [Pa]: the preload's, or the history's mean over its
+       * window). Returns the check to call after the model's assembly
+       * (empty for the preload).
+       * @throws std::runtime_error if the preload fails, or the history
+       *   cannot be read, has fewer than two nodes or no sample in its
+       *   window; the returned check throws if the history's nodes do not
+       *   cover the scene's pad faces.
+       */
+      std::function<void()>
+      set_contact_state(
+        std::vector<std::pair<dealii::Point<3>, double>> &pressure);
       /// Mesh/Contact refinements: refine where the preload's contact
       /// pressure @p preload_pressure (points [m], pressures [Pa]) varies
       /// most; contact_refinement.csv
