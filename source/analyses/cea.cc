@@ -105,16 +105,18 @@ namespace squeal
                 << " sweep point(s) written to matrices/ (MatrixMarket)"
                 << std::endl;
         }
+      const double factor = factorisation_bytes(
+        model->parts().parts[0].matrix->n_nonzero_elements(),
+        model->n_dofs(),
+        true);
       report_memory_estimate(
         comm,
         pcout.is_active() ? &pcout.get_stream() : nullptr,
         model->n_dofs(),
-        factorisation_bytes(
-          model->parts().parts[0].matrix->n_nonzero_elements(),
-          model->n_dofs(),
-          true),
+        factor,
         "an LDL^T of the stiffness; a full solve's subspace comes on top "
-        "(estimated after its inertia count)");
+        "(estimated after its inertia count)",
+        factor);
     }
 
     std::vector<parameters::ScalarPoint>

@@ -60,6 +60,9 @@ namespace squeal
           contact::contact_system(model, pattern, stiffness, constraints)
             .second :
           contact::contact_system(model, stiffness_mpi, constraints, comm);
+      // the contact system holds K_s: the bodies' parts (the common pattern's
+      // mass and stiffness) are no longer needed
+      model.release_body_parts();
       pcout << "Preload: " << model.n_dofs() << " DoFs";
       for (const scene::PointHold &hold : model.scene->point_holds)
         pcout << "; " << hold.name << ": "
@@ -69,13 +72,14 @@ namespace squeal
       const std::size_t nonzeros = Utilities::MPI::n_mpi_processes(comm) == 1 ?
                                      stiffness.n_nonzero_elements() :
                                      stiffness_mpi.n_nonzero_elements();
+      const double      factor =
+        factorisation_bytes(nonzeros, model.n_dofs(), false);
       report_memory_estimate(comm,
                              pcout.is_active() ? &pcout.get_stream() : nullptr,
                              model.n_dofs(),
-                             factorisation_bytes(nonzeros,
-                                                 model.n_dofs(),
-                                                 false),
-                             "MUMPS's LU of the contact system");
+                             factor,
+                             "MUMPS's LU of the contact system",
+                             factor);
     }
 
     void
@@ -158,9 +162,7 @@ namespace squeal
       for (const auto i : model.locally_owned_dofs)
         u[i] = state.displacement[i];
       u.compress(VectorOperation::insert);
-      physics::PETScMatrix springs;
-      model.parts().springs(model.scene->nominal_point(), springs);
-      springs.vmult(r, u);
+      model.parts().spring_product(model.scene->nominal_point(), u, r);
       const Tensor<1, 3> slide = contact::common_sliding(*model.scene);
       const std::vector<unsigned int> component =
         physics::dof_support_points(model).second;

@@ -10,6 +10,7 @@
 #include <squeal/analyses/model_updating.h>
 #include <squeal/analyses/preload.h>
 #include <squeal/analyses/run.h>
+#include <squeal/base/memory_estimate.h>
 #include <squeal/io/mesh_file.h>
 #include <squeal/physics/structural_model.h>
 #include <squeal/scene/scene.h>
@@ -490,6 +491,8 @@ namespace squeal
         scene::check_parameter_ranges(*scene);
         check_sweep_or_updating(*scene, prm);
       }
+      set_factor_storage(prm.linear_solver.out_of_core,
+                         prm.linear_solver.out_of_core_directory);
       std::string failure;
       if (prm.scene.analysis == "braking" && prm.transient.grid)
         {

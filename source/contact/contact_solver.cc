@@ -101,20 +101,24 @@ namespace squeal
         owned.add_range(range.first, range.second);
         if (rank == size - 1)
           owned.add_range(n, N);
-        DynamicSparsityPattern dsp(N, N, owned);
-        for_each_row([&dsp](const types::global_dof_index i,
-                            const auto                   &columns,
-                            const auto &) {
-          dsp.add_entries(i, columns.begin(), columns.end());
-        });
-        for (const auto &[r, col, v] : entries)
-          if (owned.is_element(r))
-            dsp.add(r, col);
-        for (unsigned int i = n; i < N; ++i)
-          if (owned.is_element(i))
-            dsp.add(i, i);
         PETScWrappers::MPI::SparseMatrix A;
-        A.reinit(owned, owned, dsp, K.comm);
+        {
+          // the pattern freed before MUMPS allocates (1.5 GB at a million
+          // DoFs)
+          DynamicSparsityPattern dsp(N, N, owned);
+          for_each_row([&dsp](const types::global_dof_index i,
+                              const auto                   &columns,
+                              const auto &) {
+            dsp.add_entries(i, columns.begin(), columns.end());
+          });
+          for (const auto &[r, col, v] : entries)
+            if (owned.is_element(r))
+              dsp.add(r, col);
+          for (unsigned int i = n; i < N; ++i)
+            if (owned.is_element(i))
+              dsp.add(i, i);
+          A.reinit(owned, owned, dsp, K.comm);
+        }
         for_each_row([&A](const types::global_dof_index i,
                           const auto                   &columns,
                           const auto &values) { A.set(i, columns, values); });

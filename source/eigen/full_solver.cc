@@ -205,16 +205,18 @@ namespace squeal
           const double k = r.symmetric_in_basis;
           const double m = symmetric ? k : 3. * k + 6. * r.symmetric_in_band;
           const double n_dofs = M.m();
+          const double factor =
+            factorisation_bytes(K_s.n_nonzero_elements(), M.m(), true);
           report_memory_estimate(
             M.get_mpi_communicator(),
             pcout.is_active() ? &pcout.get_stream() : nullptr,
             M.m(),
-            factorisation_bytes(K_s.n_nonzero_elements(), M.m(), true) +
-              (band.store_products ? 43. : 22.) * n_dofs * m,
+            factor + (band.store_products ? 43. : 22.) * n_dofs * m,
             "the full solver's LDL^T and its subspace of about " +
               std::to_string(int(m)) +
               (band.store_products ? " vectors with their M, C and K products" :
-                                     " vectors (products recomputed)"));
+                                     " vectors (products recomputed)"),
+            factor);
         }
 
       const double                    t_count = seconds_since(start);

@@ -102,6 +102,47 @@ namespace squeal
     }
 
     void
+    LinearSolver::declare_parameters(ParameterHandler &prm) const
+    {
+      prm.enter_subsection("Linear solver");
+      prm.declare_entry(
+        "Out-of-core factorisation",
+        out_of_core,
+        Patterns::Selection("auto|in core|out of core"),
+        "Where MUMPS keeps the factors of the sparse direct solves (the "
+        "preload's contact system, the eigensolvers' shift-and-invert and "
+        "inertia counts, the certification): in core (memory), out of core "
+        "(ICNTL(22) = 1: written to files and read back by every solve, "
+        "about 20 % slower, a fraction of the memory), or auto: in core "
+        "unless the run's estimated peak, printed after its set-up, exceeds "
+        "the memory available on its nodes (MemAvailable), then out of core "
+        "from there on.");
+      prm.declare_entry("Out-of-core directory",
+                        out_of_core_directory,
+                        Patterns::Anything(),
+                        "An existing directory for the factors' files out "
+                        "of core (as large as the factors: tens of GB for a "
+                        "million DoFs); empty: MUMPS's own choice, the "
+                        "environment variable MUMPS_OOC_TMPDIR or else "
+                        "/tmp. The files are removed when the solver is "
+                        "done with them.");
+      prm.leave_subsection();
+    }
+
+    void
+    LinearSolver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Linear solver");
+      out_of_core           = prm.get("Out-of-core factorisation");
+      out_of_core_directory = prm.get("Out-of-core directory");
+      prm.leave_subsection();
+      check(out_of_core_directory.empty() ||
+              std::filesystem::is_directory(out_of_core_directory),
+            "Linear solver/Out-of-core directory = '" + out_of_core_directory +
+              "' is not an existing directory");
+    }
+
+    void
     AllParameters::declare_parameters(ParameterHandler &prm) const
     {
       scene.declare_parameters(prm);
@@ -116,6 +157,7 @@ namespace squeal
       preload.declare_parameters(prm);
       transient.declare_parameters(prm);
       output.declare_parameters(prm);
+      linear_solver.declare_parameters(prm);
       updating.declare_parameters(prm);
     }
 
@@ -134,6 +176,7 @@ namespace squeal
       preload.parse_parameters(prm);
       transient.parse_parameters(prm);
       output.parse_parameters(prm);
+      linear_solver.parse_parameters(prm);
       updating.parse_parameters(prm);
       check(mesh.contact_refinements == 0 || scene.analysis == "preloaded cea",
             "Mesh/Contact refinements = " +

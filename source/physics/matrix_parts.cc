@@ -91,6 +91,11 @@ namespace squeal
     void
     MatrixParts::combine(const Coefficients &c, PETScMatrix &result) const
     {
+      if (bodies_released)
+        throw std::logic_error(
+          "matrix parts: the bodies' parts were released "
+          "(StructuralModel::release_body_parts); no combination can be "
+          "formed");
       // The first part is on the common pattern: copy it and add the
       // others, on the same pattern or on their own nonzeros within it
       // (own_pattern). PETScMatrix::add() (DIFFERENT_NONZERO_PATTERN) would
@@ -134,6 +139,22 @@ namespace squeal
     MatrixParts::springs(const parameters::ScalarPoint &p, PETScMatrix &K) const
     {
       combine(coefficients(p).springs, K);
+    }
+
+    void
+    MatrixParts::spring_product(const parameters::ScalarPoint &p,
+                                const PETScVector             &u,
+                                PETScVector                   &result) const
+    {
+      const Coefficients c = coefficients(p).springs;
+      PETScVector        t(result);
+      result = 0.;
+      for (unsigned int k = 0; k < size(); ++k)
+        if (c[k] != 0.)
+          {
+            matrix(k).vmult(t, u);
+            result.add(c[k], t);
+          }
     }
 
     void

@@ -688,6 +688,27 @@ namespace squeal
       assembled = parts;
     }
 
+    void
+    StructuralModel::release_body_parts()
+    {
+      MatrixParts kept = assembled;
+      kept.parts.clear();
+      for (const MatrixParts::Part &part : assembled.parts)
+        {
+          const bool body = (part.kind == MatrixParts::Kind::mass ||
+                             part.kind == MatrixParts::Kind::stiffness) &&
+                            !part.springs;
+          if (!body)
+            kept.parts.push_back(part);
+          else
+            for (auto &m : part_matrices)
+              if (m.get() == part.matrix)
+                m->clear();
+        }
+      kept.bodies_released = true;
+      assembled            = kept;
+    }
+
     PETScMatrix &
     StructuralModel::new_part_matrix(
       const std::function<void(DynamicSparsityPattern &)> &own)

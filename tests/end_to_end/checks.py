@@ -4,6 +4,8 @@ import os
 import shutil
 import subprocess
 import sys
+import threading
+import time
 
 _failures = []
 
@@ -87,12 +89,35 @@ end
 """
 
 
-def run_table_point(squeal, base_prm, name, extra, mpi=0):
+def run_watching(command, folder, every=0.002):
+    """Runs COMMAND (a list) to its end while listing FOLDER every EVERY
+    seconds. Returns (subprocess.CompletedProcess, the set of file names
+    seen in FOLDER at any time)."""
+    seen = set()
+    with subprocess.Popen(command, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, text=True) as p:
+        out, err = [], []
+        readers = [threading.Thread(target=lambda s=s, b=b: b.append(s.read()))
+                   for s, b in ((p.stdout, out), (p.stderr, err))]
+        for t in readers:
+            t.start()
+        while p.poll() is None:
+            seen.update(os.listdir(folder))
+            time.sleep(every)
+        for t in readers:
+            t.join()
+    return subprocess.CompletedProcess(command, p.returncode, "".join(out),
+                                       "".join(err)), seen
+
+
+def run_table_point(squeal, base_prm, name, extra, mpi=0, watch=None):
     """Writes NAME.prm (include BASE_PRM, then EXTRA, then the full solver
     at the single point E_pad = 25 GPa, mu = 0.5 of thesis Table 3.1 and
     Output/Directory = NAME without mode shapes), runs squeal on it into a
     fresh folder NAME, under `mpirun -np MPI` if MPI. Returns (folder,
-    subprocess.CompletedProcess); the caller judges the exit code."""
+    subprocess.CompletedProcess); the caller judges the exit code. With
+    WATCH (a folder), returns (folder, process, the file names seen in WATCH
+    while it ran; run_watching())."""
     out = os.path.abspath(name)
     shutil.rmtree(out, ignore_errors=True)
     with open(name + ".prm", "w") as f:
@@ -103,11 +128,14 @@ def run_table_point(squeal, base_prm, name, extra, mpi=0):
 end
 """)
     launcher = ["mpirun", "-np", str(mpi)] if mpi else []
-    r = subprocess.run(launcher + [squeal, name + ".prm"], capture_output=True,
-                       text=True)
+    if watch:
+        r, seen = run_watching(launcher + [squeal, name + ".prm"], watch)
+    else:
+        r = subprocess.run(launcher + [squeal, name + ".prm"],
+                           capture_output=True, text=True)
     if r.returncode == 0:
         every_pvd_loads(squeal, out)
-    return out, r
+    return (out, r, seen) if watch else (out, r)
 
 
 

@@ -35,12 +35,51 @@ namespace squeal
                       bool                            symmetric);
 
   /**
+   * Sets how MUMPS keeps its factors for the rest of the process
+   * (Linear solver/Out-of-core factorisation): @p mode `in core`, `out of
+   * core` (switched on at once) or `auto` (report_memory_estimate()
+   * switches it on when a run's estimated peak exceeds the memory
+   * available). @p directory: where the factors' files go ("": MUMPS's
+   * default, MUMPS_OOC_TMPDIR or /tmp). Out of core means MUMPS's
+   * ICNTL(22) = 1 for every factorisation, set in PETSc's options database
+   * for the factors without a prefix (the contact solver's, the inertia
+   * counts', the block solves') and with SLEPc's `st_` (shift-and-invert).
+   * @throws std::runtime_error if @p mode is none of the three.
+   */
+  void
+  set_factor_storage(const std::string &mode, const std::string &directory);
+
+  /** Whether MUMPS factorises out of core from now on (see
+   * set_factor_storage()). Throws nothing. */
+  bool
+  factors_out_of_core();
+
+  /**
+   * The memory available to new allocations on the nodes of @p comm [MB]:
+   * /proc/meminfo's MemAvailable of each node, counted once per node (by
+   * its first rank in @p comm), summed. Collective.
+   * @throws what deal.II's MPI calls throw if the communicator fails.
+   */
+  double
+  available_memory_mb(MPI_Comm comm);
+
+  /**
    * Prints on @p out (if not null; rank 0's) `Memory: <now> MB in use
    * (<kB> per DoF); estimated peak <peak> MB (<kB> per DoF) with
-   * <what>`, where now is the resident memory (VmRSS) summed over the
-   * ranks of @p comm, and peak = now + @p extra_bytes (the caller's
-   * estimate of what the analysis still allocates, summed over the ranks).
-   * Per DoF of @p n_dofs. Collective.
+   * <what>`, where now is the resident memory (VmRSS, after returning the
+   * heap's free pages to the system) summed over the ranks of @p comm, and
+   * peak = now + @p extra_bytes (the caller's estimate of what the
+   * analysis still allocates, summed over the ranks). Per DoF of
+   * @p n_dofs. @p factor_bytes: the part of @p extra_bytes that is MUMPS's
+   * factors (factorisation_bytes()). With the `auto` storage of
+   * set_factor_storage(), a peak above the memory available to the run
+   * (available_memory_mb() plus what it holds now) switches the factors
+   * out of core; out of core, a quarter of @p factor_bytes is
+   * counted (MUMPS's in-core work space: on the default passenger-car
+   * brake's preload, 199 584 DoFs, the peak fell from 5195 to 3497 MB of
+   * which the factors' estimate was 2046 MB). A peak still above the
+   * available memory is reported as such (the system may stop the run).
+   * Collective.
    * @returns the estimated peak [MB].
    * @throws what deal.II's MPI sum throws if the ranks' communicator fails.
    */
@@ -49,7 +88,8 @@ namespace squeal
                          std::ostream                   *out,
                          dealii::types::global_dof_index n_dofs,
                          double                          extra_bytes,
-                         const std::string              &what);
+                         const std::string              &what,
+                         double                          factor_bytes = 0.);
 } // namespace squeal
 
 #endif

@@ -407,6 +407,31 @@ namespace squeal
       parse_parameters(ParameterHandler &prm);
     };
 
+    /**
+     * How the sparse direct solver (MUMPS, for the preload's contact system,
+     * the eigensolvers' shift-and-invert and inertia counts, the
+     * certification) keeps its factors.
+     */
+    struct LinearSolver
+    {
+      /// `auto` (in memory unless the run's estimated peak exceeds the
+      /// memory available, then on disk), `in core` or `out of core`
+      /// (MUMPS ICNTL(22) = 1: the factors written to files, read back
+      /// by each solve)
+      std::string out_of_core = "auto";
+      /// where the factors' files go out of core ("": MUMPS's own choice,
+      /// the environment variable MUMPS_OOC_TMPDIR or else /tmp)
+      std::string out_of_core_directory;
+      /** Declares the subsection's entries: defaults, ranges, help (SI units).
+       */
+      void
+      declare_parameters(ParameterHandler &prm) const;
+      /** Reads them back. @throws std::runtime_error naming the parameter
+       * when the directory does not exist. */
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     /** Where results go. */
     struct Output
     {
@@ -561,19 +586,20 @@ namespace squeal
     /** All parameters of a run. */
     struct AllParameters
     {
-      Scene         scene;       ///< subsection Scene
-      Geometry      geometry;    ///< subsection Geometry
-      Mesh          mesh;        ///< subsection Mesh
-      Materials     materials;   ///< subsection Materials
-      Springs       springs;     ///< subsection Springs
-      Damping       damping;     ///< subsection Damping
-      Interface     interface;   ///< subsection Interface
-      Eigensolver   eigensolver; ///< subsection Eigensolver
-      Sweep         sweep;       ///< subsection Sweep
-      Preload       preload;     ///< subsection Preload
-      Transient     transient;   ///< subsection Transient
-      Output        output;      ///< subsection Output
-      ModelUpdating updating;    ///< subsection Model updating
+      Scene         scene;         ///< subsection Scene
+      Geometry      geometry;      ///< subsection Geometry
+      Mesh          mesh;          ///< subsection Mesh
+      Materials     materials;     ///< subsection Materials
+      Springs       springs;       ///< subsection Springs
+      Damping       damping;       ///< subsection Damping
+      Interface     interface;     ///< subsection Interface
+      Eigensolver   eigensolver;   ///< subsection Eigensolver
+      Sweep         sweep;         ///< subsection Sweep
+      Preload       preload;       ///< subsection Preload
+      Transient     transient;     ///< subsection Transient
+      Output        output;        ///< subsection Output
+      LinearSolver  linear_solver; ///< subsection Linear solver
+      ModelUpdating updating;      ///< subsection Model updating
 
       /** Declares every subsection with defaults, ranges and help. */
       void

@@ -114,6 +114,12 @@ namespace squeal
       /// One coefficient per part.
       using Coefficients = std::vector<double>;
 
+      /// true once StructuralModel::release_body_parts() dropped the
+      /// bodies' (common-pattern) parts: only the spring sets' and the
+      /// interfaces' parts remain, and combine() (every combination of the
+      /// model) throws; spring_product() still works
+      bool bodies_released = false;
+
       /** The coefficients of M, K_s, K and C at one point. */
       struct Combination
       {
@@ -219,6 +225,16 @@ namespace squeal
       void
       springs(const parameters::ScalarPoint &p, PETScMatrix &K) const;
       /**
+       * @p result = (the spring sets' stiffness at @p p) @p u, from each
+       * spring part's own nonzeros (no matrix of the common pattern is
+       * formed; works after StructuralModel::release_body_parts()).
+       * @p u, @p result: locally owned vectors of n entries [m], [N].
+       */
+      void
+      spring_product(const parameters::ScalarPoint &p,
+                     const PETScVector             &u,
+                     PETScVector                   &result) const;
+      /**
        * The sum of the parts of kind @p kind, each with coefficient 1 (the
        * interface parts at their reference stiffness, for the reduced
        * basis' enrichment); false (and @p result untouched) if there is
@@ -286,6 +302,17 @@ namespace squeal
       /// save_refine_flags: 3 bits per active cell of the mesh before that
       /// step), for replay_refinement().
       std::vector<std::vector<bool>> refinement_history;
+
+      /**
+       * Frees the bodies' mass and stiffness parts (the matrices on the
+       * common pattern, two to four whole matrices: 4 GB at a million
+       * DoFs) once an analysis has taken what it needs of them (the
+       * preload its contact system); the spring sets' and interfaces'
+       * parts stay. parts() then has MatrixParts::bodies_released set and
+       * its combinations throw std::logic_error.
+       */
+      void
+      release_body_parts();
 
       /** The assembled parts, for the eigensolvers. */
       MatrixParts
