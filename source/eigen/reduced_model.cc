@@ -94,6 +94,12 @@ namespace squeal
       PETScMatrix K_n, K_t;
       const bool  has_normal  = model.sum(Kind::interface_normal, K_n),
                  has_friction = model.sum(Kind::interface_friction, K_t);
+      // a combination has the whole pattern (2 GB at a million DoFs); the
+      // interfaces' few hundred rows are kept
+      if (has_normal)
+        physics::store_nonzeros_only(K_n, owned, comm);
+      if (has_friction)
+        physics::store_nonzeros_only(K_t, owned, comm);
       for (unsigned int i = 0; i < samples.size(); ++i)
         {
           const auto &s = samples[i];

@@ -76,8 +76,8 @@ namespace squeal
    * (available_memory_mb() plus what it holds now) switches the factors
    * out of core; out of core, a quarter of @p factor_bytes is
    * counted (MUMPS's in-core work space: on the default passenger-car
-   * brake's preload, 199 584 DoFs, the peak fell from 5195 to 3497 MB of
-   * which the factors' estimate was 2046 MB). A peak still above the
+   * brake's preload, 199 584 DoFs, the peak fell from 4501 to 2786 MB out
+   * of core, the factors' estimate being 2045 MB). A peak still above the
    * available memory is reported as such (the system may stop the run).
    * Collective.
    * @returns the estimated peak [MB].
