@@ -48,9 +48,14 @@ end
 """, mpi)
     if r.returncode != 0:
         fail(f"{name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
+    return out, r.stdout, eigenvalues(out)
+
+
+def eigenvalues(out):
+    """(Re lambda [1/s], f [Hz]) of every row of OUT/eigenvalues.csv."""
     with open(os.path.join(out, "eigenvalues.csv"), newline="") as f:
-        lam = [(float(r["re_per_s"]), float(r["freq_Hz"])) for r in csv.DictReader(f)]
-    return out, r.stdout, lam
+        return [(float(r["re_per_s"]), float(r["freq_Hz"]))
+                for r in csv.DictReader(f)]
 
 
 def largest_distance(lam, ref):
@@ -59,16 +64,23 @@ def largest_distance(lam, ref):
                abs(complex(b[0], 6.283185307 * b[1])) for a, b in zip(lam, ref))
 
 
+def same_eigenvalues(what, lam, ref, tolerance):
+    """Fails unless LAM has REF's rows, each within TOLERANCE of |lambda|;
+    returns the largest distance."""
+    if len(lam) != len(ref):
+        fail(f"{what}: {len(lam)} eigenvalues against {len(ref)}")
+    worst = largest_distance(lam, ref)
+    if worst > tolerance:
+        fail(f"{what} changes the eigenvalues by {worst:.2e}")
+    return worst
+
+
 _, _, plain = run("plain", "cea", "frictionless")
 out0, log0, full = run("frictionless", "preloaded cea", "frictionless")
 with open(os.path.join(out0, "preload", "contact.csv"), newline="") as f:
     if any(int(r["status"]) == 0 for r in csv.DictReader(f)):
         fail("the frictionless preload separated a pad node")
-if len(full) != len(plain):
-    fail(f"{len(full)} eigenvalues against {len(plain)}")
-worst = largest_distance(full, plain)
-if worst > 1e-8:
-    fail(f"full-contact preload changes the eigenvalues by {worst:.2e}")
+worst = same_eigenvalues("full-contact preload", full, plain, 1e-8)
 print(f"frictionless preload, full contact: eigenvalues as the plain CEA "
       f"({worst:.1e}): ok")
 
@@ -86,11 +98,7 @@ if change < 1e-4:
 print(f"sliding preload: {separated} pad nodes separated, eigenvalues moved "
       f"(largest frequency change {100 * change:.2f} %): ok")
 _, _, lifted2 = run("sliding_np2", "preloaded cea", "steady sliding", mpi=2)
-if len(lifted2) != len(lifted):
-    fail(f"mpirun -np 2: {len(lifted2)} eigenvalues against {len(lifted)}")
-worst = largest_distance(lifted2, lifted)
-if worst > 1e-8:
-    fail(f"mpirun -np 2 changes the eigenvalues by {worst:.2e}")
+worst = same_eigenvalues("mpirun -np 2", lifted2, lifted, 1e-8)
 print(f"mpirun -np 2: the serial eigenvalues ({worst:.1e}): ok")
 
 # Out of core: MUMPS's factors (the preload's LU, the full solver's LDL^T
@@ -119,14 +127,7 @@ if not factor_files:
     fail(f"out of core: no MUMPS factor file appeared in {ooc} ({sorted(seen)})")
 if os.listdir(ooc):
     fail(f"out of core: files left in {ooc}: {os.listdir(ooc)}")
-with open(os.path.join(out3, "eigenvalues.csv"), newline="") as f:
-    lam3 = [(float(r["re_per_s"]), float(r["freq_Hz"]))
-            for r in csv.DictReader(f)]
-if len(lam3) != len(lifted):
-    fail(f"out of core: {len(lam3)} eigenvalues against {len(lifted)}")
-worst = largest_distance(lam3, lifted)
-if worst > 1e-10:
-    fail(f"out of core changes the eigenvalues by {worst:.2e}")
+worst = same_eigenvalues("out of core", eigenvalues(out3), lifted, 1e-10)
 print(f"out of core: {len(factor_files)} MUMPS factor files seen while it ran, "
       f"none left; the in-core eigenvalues ({worst:.1e}): ok")
 print("all checks passed")
