@@ -9,6 +9,7 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -37,18 +38,22 @@ namespace squeal
     std::string storage     = "in core"; // or "auto", "out of core"
     bool        out_of_core = false;
 
+    // every MUMPS factor squeal creates: without a prefix, and SLEPc's
+    // spectral transformation's
+    constexpr std::array<const char *, 2> ooc_options{
+      {"-mat_mumps_icntl_22", "-st_mat_mumps_icntl_22"}};
+
     void
-    switch_out_of_core()
+    switch_out_of_core(const bool on)
     {
-      // every MUMPS factor squeal creates: without a prefix, and SLEPc's
-      // spectral transformation's
-      for (const char *name : {"-mat_mumps_icntl_22", "-st_mat_mumps_icntl_22"})
-        if (PetscOptionsSetValue(nullptr, name, "1") != 0)
+      for (const char *name : ooc_options)
+        if ((on ? PetscOptionsSetValue(nullptr, name, "1") :
+                  PetscOptionsClearValue(nullptr, name)) != 0)
           throw std::runtime_error(
             std::string("out-of-core factorisation: PETSc refused the "
                         "option ") +
             name);
-      out_of_core = true;
+      out_of_core = on;
     }
   } // namespace
 
@@ -62,14 +67,8 @@ namespace squeal
     storage = mode;
     if (!directory.empty())
       setenv("MUMPS_OOC_TMPDIR", directory.c_str(), 1);
-    if (mode == "out of core")
-      switch_out_of_core();
-  }
-
-  bool
-  factors_out_of_core()
-  {
-    return out_of_core;
+    if (out_of_core || mode == "out of core")
+      switch_out_of_core(mode == "out of core");
   }
 
   double
@@ -118,7 +117,7 @@ namespace squeal
     const bool   switched  = storage == "auto" && !out_of_core &&
                           factor_bytes > 0. && in_core > available;
     if (switched)
-      switch_out_of_core();
+      switch_out_of_core(true);
     // out of core MUMPS holds the largest fronts: 16 % of the factors on
     // the default brake's preload (peak 4501 MB in core, 2786 MB out of
     // core, factors' estimate 2045 MB); a quarter is counted

@@ -39,20 +39,17 @@ namespace squeal
    * (Linear solver/Out-of-core factorisation): @p mode `in core`, `out of
    * core` (switched on at once) or `auto` (report_memory_estimate()
    * switches it on when a run's estimated peak exceeds the memory
-   * available). @p directory: where the factors' files go ("": MUMPS's
+   * available); `in core` and `auto` switch off what an earlier run of
+   * the process switched on. @p directory: where the factors' files go ("": MUMPS's
    * default, MUMPS_OOC_TMPDIR or /tmp). Out of core means MUMPS's
    * ICNTL(22) = 1 for every factorisation, set in PETSc's options database
    * for the factors without a prefix (the contact solver's, the inertia
    * counts', the block solves') and with SLEPc's `st_` (shift-and-invert).
-   * @throws std::runtime_error if @p mode is none of the three.
+   * @throws std::runtime_error if @p mode is none of the three, or PETSc
+   * refuses the option.
    */
   void
   set_factor_storage(const std::string &mode, const std::string &directory);
-
-  /** Whether MUMPS factorises out of core from now on (see
-   * set_factor_storage()). Throws nothing. */
-  bool
-  factors_out_of_core();
 
   /**
    * The memory available to new allocations on the nodes of @p comm [MB]:
