@@ -11,7 +11,10 @@
 // the dense parts: the matrix above with a third of its entries stored
 // as zeros (a part on the common pattern), a part on its own pattern of
 // 12 scattered rows with long-range couplings, and an empty part; two
-// coefficient vectors, one of which skips a part.
+// coefficient vectors, one of which skips a part. The same product added
+// to a block with values (multiply_add), chosen rows of it from a
+// row-major block (RowProduct, as the reduced basis' projection forms
+// them), and B T formed in place (multiply_in_place) against B T.
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -104,6 +107,68 @@ main(int argc, char **argv)
       test_tools::check_true(name + "the product is not zero", scale > 1.);
       test_tools::check(
         name + "A B against the dense product", error, 0., 1e-13, scale);
+
+      // R += a A B into a block that holds values already
+      const Eigen::MatrixXd R0 =
+        Eigen::MatrixXd::Constant(last - first, columns, 0.75);
+      Eigen::MatrixXd R = R0;
+      eigen::internal::multiply_add(A,
+                                    -2.5,
+                                    B.middleRows(first, last - first),
+                                    R);
+      const double add_error =
+        Utilities::MPI::max((R - (R0 - 2.5 * reference)).cwiseAbs().maxCoeff(),
+                            MPI_COMM_WORLD);
+      test_tools::check(name + "R - 2.5 A B against the dense product",
+                        add_error,
+                        0.,
+                        1e-13,
+                        2.5 * scale);
+
+      // chosen rows of A B from a row-major B (every fifth local row and
+      // the last, none on a rank without rows)
+      const eigen::internal::RowMatrix  Br = B.middleRows(first, last - first);
+      const eigen::internal::RowProduct rows_of(A, Br);
+      std::vector<int>                  chosen;
+      for (unsigned int i = 0; i < last - first; i += 5)
+        chosen.push_back(i);
+      if (chosen.back() != int(last - first) - 1)
+        chosen.push_back(last - first - 1);
+      const eigen::internal::RowMatrix P         = rows_of.rows(chosen);
+      double                           row_error = 0.;
+      for (std::size_t a = 0; a < chosen.size(); ++a)
+        row_error =
+          std::max(row_error,
+                   (P.row(a) - reference.row(chosen[a])).cwiseAbs().maxCoeff());
+      row_error = Utilities::MPI::max(row_error, MPI_COMM_WORLD);
+      test_tools::check(name + "chosen rows of A B against the dense product",
+                        row_error,
+                        0.,
+                        1e-13,
+                        scale);
+    }
+
+  // B := B T in place against the product into a new block (every rank
+  // its own rows: 300 x 150 times 150 x 90, blocks of 1024 rows and one)
+  for (const unsigned int rows : {300u, 2500u})
+    {
+      Eigen::MatrixXd B(rows, 150), T(150, 90);
+      for (unsigned int i = 0; i < rows; ++i)
+        for (int j = 0; j < 150; ++j)
+          B(i, j) = std::cos(0.21 * i - 0.13 * j);
+      for (int i = 0; i < 150; ++i)
+        for (int j = 0; j < 90; ++j)
+          T(i, j) = std::sin(0.5 * i + 0.7 * j) / (1. + i);
+      const Eigen::MatrixXd reference = B * T;
+      eigen::internal::multiply_in_place(B, T);
+      const std::string name =
+        "B T in place, " + std::to_string(rows) + " rows: ";
+      test_tools::check(name + "columns", B.cols(), 90, 0., 1.);
+      test_tools::check(name + "against B T",
+                        (B - reference).cwiseAbs().maxCoeff(),
+                        0.,
+                        1e-13,
+                        reference.cwiseAbs().maxCoeff());
     }
 
   // the parts

@@ -139,8 +139,12 @@ namespace squeal
         // A PETSc dense matrix over the local rows of B (column-major,
         // shared storage; PETSc only reads it when it is an input).
         Mat
-        wrap(const PETScMatrix &A, const Eigen::MatrixXd &B)
+        wrap(const PETScMatrix &A, Eigen::Ref<const Eigen::MatrixXd> B)
         {
+          // PETSc's leading dimension is the local row count
+          if (B.cols() > 1 && B.outerStride() != B.rows())
+            throw std::logic_error(
+              "dense block: a block with gaps between its columns");
           Mat Bd;
           if (MatCreateDense(A.get_mpi_communicator(),
                              B.rows(),
@@ -201,8 +205,7 @@ namespace squeal
           const PetscScalar *values = nullptr;
         };
 
-        using RowBlock = Eigen::
-          Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+        using RowBlock = RowMatrix;
 
         // Gathers the rows colmap[i] of a distributed row-major block from
         // their owners: one PETSc star forest per product, one broadcast per
@@ -299,11 +302,23 @@ namespace squeal
       Eigen::MatrixXd
       multiply(Mat A, Eigen::Ref<const Eigen::MatrixXd> B)
       {
+        Eigen::MatrixXd result(B.rows(), B.cols());
+        multiply_add(A, 0., B, result);
+        return result;
+      }
+
+      void
+      multiply_add(Mat                               A,
+                   const double                      a,
+                   Eigen::Ref<const Eigen::MatrixXd> B,
+                   Eigen::Ref<Eigen::MatrixXd>       R)
+      {
         // Eigen's row-major sparse times row-major dense product reads each
         // nonzero once per block of columns and the rows of B contiguously
         // (PETSc 3.18's AIJ times dense streams the matrix once per four
         // columns); the off-process part (MPIAIJ) with ghost rows of B
-        // gathered by a PETSc star forest.
+        // gathered by a PETSc star forest. a = 0: R := A B (R's values
+        // are not read).
         const AijBlocks                  b(A);
         const CsrView                    d(b.diagonal);
         std::unique_ptr<const CsrView>   o;
@@ -313,7 +328,6 @@ namespace squeal
             o      = std::make_unique<const CsrView>(b.off_diagonal);
             ghosts = std::make_unique<const GhostRows>(A, b.n_ghost, b.colmap);
           }
-        Eigen::MatrixXd result(B.rows(), B.cols());
         // blocks of 64 columns keep the rows of B that a row of A reads in
         // cache
         constexpr Eigen::Index width = 64;
@@ -324,9 +338,79 @@ namespace squeal
             RowBlock           product = d.map() * local;
             if (ghosts)
               product += o->map() * ghosts->gather(local);
-            result.middleCols(c, w) = product;
+            if (a == 0.)
+              R.middleCols(c, w) = product;
+            else
+              R.middleCols(c, w) += a * product;
           }
-        return result;
+      }
+
+      struct RowProduct::Data
+      {
+        AijBlocks                      blocks;
+        CsrView                        diagonal;
+        std::unique_ptr<const CsrView> off_diagonal;
+        RowMatrix                      ghosts; // V's rows colmap[i]
+        const RowMatrix               &V;
+
+        Data(Mat A, const RowMatrix &V)
+          : blocks(A)
+          , diagonal(blocks.diagonal)
+          , V(V)
+        {
+          if (!blocks.is_mpi)
+            return;
+          off_diagonal = std::make_unique<const CsrView>(blocks.off_diagonal);
+          ghosts       = GhostRows(A, blocks.n_ghost, blocks.colmap).gather(V);
+        }
+      };
+
+      RowProduct::RowProduct(const PETScMatrix &A, const RowMatrix &V)
+        : data(std::make_unique<Data>(A, V))
+      {}
+
+      RowProduct::~RowProduct() = default;
+
+      RowMatrix
+      RowProduct::rows(const std::vector<int> &rows) const
+      {
+        const Data &d = *data;
+        RowMatrix   P = RowMatrix::Zero(rows.size(), d.V.cols());
+        const auto  add_row =
+          [&P](const auto &A, const RowMatrix &X, const int i, const int a) {
+            for (typename std::decay_t<decltype(A)>::InnerIterator it(A, i); it;
+                 ++it)
+              P.row(a) += it.value() * X.row(it.col());
+          };
+        const auto dm = d.diagonal.map();
+        for (std::size_t a = 0; a < rows.size(); ++a)
+          {
+            add_row(dm, d.V, rows[a], a);
+            if (d.off_diagonal)
+              add_row(d.off_diagonal->map(), d.ghosts, rows[a], a);
+          }
+        return P;
+      }
+
+      void
+      multiply_in_place(Eigen::MatrixXd &B, const Eigen::MatrixXd &T)
+      {
+        if (T.rows() != B.cols() || T.cols() > B.cols())
+          throw std::logic_error(
+            "dense block: B T in place needs T with B's columns as rows "
+            "and at most as many columns");
+        // a block of rows at a time: its product, then its first T.cols()
+        // entries overwritten (rows below are still to be read)
+        constexpr Eigen::Index height = 1024;
+        for (Eigen::Index i = 0; i < B.rows(); i += height)
+          {
+            const Eigen::Index    h       = std::min(height, B.rows() - i);
+            const Eigen::MatrixXd product = B.middleRows(i, h) * T;
+            B.block(i, 0, h, T.cols())    = product;
+          }
+        // the leading columns are the front of the column-major storage:
+        // shrinking them keeps the values (realloc, no copy)
+        B.conservativeResize(Eigen::NoChange, T.cols());
       }
 
       struct PartsProduct::Data
@@ -529,14 +613,25 @@ namespace squeal
       solve_block(void *ksp, const PETScMatrix &A, const Eigen::MatrixXd &B)
       {
         Eigen::MatrixXd X(B.rows(), B.cols());
+        solve_block(ksp, A, B, X);
+        return X;
+      }
+
+      void
+      solve_block(void                             *ksp,
+                  const PETScMatrix                &A,
+                  Eigen::Ref<const Eigen::MatrixXd> B,
+                  Eigen::Ref<Eigen::MatrixXd>       X)
+      {
+        if (X.rows() != B.rows() || X.cols() != B.cols())
+          throw std::logic_error("dense block: X and B differ in size");
         if (B.cols() == 0)
-          return X;
+          return;
         Mat Bd = wrap(A, B), Xd = wrap(A, X);
         if (KSPMatSolve(static_cast<KSP>(ksp), Bd, Xd) != 0)
           throw std::runtime_error("dense block: KSPMatSolve failed");
         MatDestroy(&Xd);
         MatDestroy(&Bd);
-        return X;
       }
 
       Eigen::MatrixXd

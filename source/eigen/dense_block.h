@@ -47,6 +47,66 @@ namespace squeal
       multiply(Mat A, Eigen::Ref<const Eigen::MatrixXd> B);
 
       /**
+       * R += a A B (R := A B for @p a = 0) for a sparse n x n PETSc AIJ
+       * matrix A and the locally owned rows of dense n x m blocks B and R,
+       * without a temporary n x m block.
+       * @throws std::runtime_error if PETSc fails.
+       */
+      void
+      multiply_add(Mat                               A,
+                   double                            a,
+                   Eigen::Ref<const Eigen::MatrixXd> B,
+                   Eigen::Ref<Eigen::MatrixXd>       R);
+
+      /** A dense block stored row by row. */
+      using RowMatrix =
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+      /**
+       * Chosen rows of A V for a sparse n x n matrix A and the locally
+       * owned rows of a dense n x r block V stored row by row, without
+       * forming A V: a row of the product reads A's row and the rows of V
+       * it names, so that the products of a model's parts can be formed
+       * and used a block of rows at a time (the reduced basis' projection
+       * holds V and one block of rows per part, not A_k V).
+       */
+      class RowProduct
+      {
+      public:
+        /**
+         * Gathers V's rows that A's off-process columns name (MPIAIJ;
+         * collective). @p V must outlive the object.
+         * @throws std::runtime_error if A is not a PETSc AIJ matrix or
+         * PETSc fails.
+         */
+        RowProduct(const PETScMatrix &A, const RowMatrix &V);
+        ~RowProduct();
+        RowProduct(const RowProduct &) = delete;
+        RowProduct &
+        operator=(const RowProduct &) = delete;
+
+        /**
+         * (A V)(rows, :): |rows| x r, @p rows local row indices (not
+         * collective).
+         */
+        RowMatrix
+        rows(const std::vector<int> &rows) const;
+
+      private:
+        struct Data;
+        std::unique_ptr<Data> data;
+      };
+
+      /**
+       * B := B T in place, a block of rows at a time (no second n x m
+       * block): B the locally owned rows of an n x m block, T m x k with
+       * k <= m; B keeps its first k columns' storage.
+       * @throws std::logic_error if T's size does not fit.
+       */
+      void
+      multiply_in_place(Eigen::MatrixXd &B, const Eigen::MatrixXd &T);
+
+      /**
        * Products of a model's parts with dense blocks: sum_k c_k A_k B for
        * several coefficient vectors c at once (M(p) B, C(p) B and K(p) B of
        * a point p without forming M(p), C(p) or K(p)), one pass over each
@@ -113,6 +173,18 @@ namespace squeal
        */
       Eigen::MatrixXd
       solve_block(void *ksp, const PETScMatrix &A, const Eigen::MatrixXd &B);
+
+      /**
+       * The same into @p X, a block of B's size whose columns are adjacent
+       * in memory (a matrix or a range of its columns, not @p B).
+       * @throws std::logic_error if X's size differs from B's or X's
+       * columns are not adjacent; std::runtime_error if PETSc fails.
+       */
+      void
+      solve_block(void                             *ksp,
+                  const PETScMatrix                &A,
+                  Eigen::Ref<const Eigen::MatrixXd> B,
+                  Eigen::Ref<Eigen::MatrixXd>       X);
 
       /**
        * T such that B T is M-orthonormal, from the Gram matrix B^T M B:

@@ -26,6 +26,11 @@ namespace squeal
       result.M = std::make_shared<PETScMatrix>();
       PETScMatrix K;
       model.mass(p, *result.M);
+      // on its nonzeros (a third of the common pattern): the eigensolver
+      // multiplies by it a few hundred times, and it is kept with the modes
+      physics::store_nonzeros_only(*result.M,
+                                   result.M->locally_owned_range_indices(),
+                                   result.M->get_mpi_communicator());
       model.symmetric_stiffness(p, K);
       for (auto &mode : solve_undamped(*result.M, K, band, factor, true, pcout))
         {

@@ -99,8 +99,9 @@ namespace squeal
               farthest = std::max(farthest, std::hypot(kr - sigma, ki));
               if (kr <= w_1 * w_1 && ki >= 0)
                 {
-                  UndampedMode m{{kr, ki}, xr, xi};
-                  if (ki == 0)
+                  // a symmetric pencil's modes are real: no imaginary part
+                  UndampedMode m{{kr, ki}, xr, symmetric ? PETScVector() : xi};
+                  if (ki == 0 && !symmetric)
                     m.im = 0;
                   modes.push_back(std::move(m));
                 }
@@ -108,22 +109,33 @@ namespace squeal
           const bool covered = farthest >= needed || nconv >= n;
           if (symmetric && !modes.empty() && covered)
             {
+              // the Krylov basis (about 2 nev vectors) is not needed any
+              // more; the factorisation stays for the step below
+              BV bv;
+              check(EPSGetBV(eps, &bv), "EPSGetBV");
+              check(BVResize(bv, 1, PETSC_FALSE), "BVResize");
               // one step of inverse iteration for all of them, x <-
               // (K - sigma M)^-1 M x (it removes what the Krylov basis
               // left along the other eigenvectors, as SLEPc's purification
-              // does), then unit M-norm
-              const IndexSet  owned = M.locally_owned_range_indices();
-              Eigen::MatrixXd X(owned.n_elements(), modes.size());
-              for (unsigned int j = 0; j < modes.size(); ++j)
-                X.col(j) = internal::local_part(modes[j].re, owned);
-              X = internal::solve_block(ksp, K, internal::multiply(M, X));
-              Eigen::MatrixXd norms =
-                X.cwiseProduct(internal::multiply(M, X)).colwise().sum();
-              internal::sum_over_ranks(norms, M.get_mpi_communicator());
-              for (unsigned int j = 0; j < modes.size(); ++j)
+              // does), then unit M-norm; 64 modes at a time (three blocks
+              // of them in memory)
+              const IndexSet        owned = M.locally_owned_range_indices();
+              constexpr std::size_t width = 64;
+              for (std::size_t j0 = 0; j0 < modes.size(); j0 += width)
                 {
-                  X.col(j) /= std::sqrt(norms(0, j));
-                  internal::set_local_part(modes[j].re, X.col(j));
+                  const std::size_t w = std::min(width, modes.size() - j0);
+                  Eigen::MatrixXd   X(owned.n_elements(), w);
+                  for (std::size_t j = 0; j < w; ++j)
+                    X.col(j) = internal::local_part(modes[j0 + j].re, owned);
+                  X = internal::solve_block(ksp, K, internal::multiply(M, X));
+                  Eigen::MatrixXd norms =
+                    X.cwiseProduct(internal::multiply(M, X)).colwise().sum();
+                  internal::sum_over_ranks(norms, M.get_mpi_communicator());
+                  for (std::size_t j = 0; j < w; ++j)
+                    {
+                      X.col(j) /= std::sqrt(norms(0, j));
+                      internal::set_local_part(modes[j0 + j].re, X.col(j));
+                    }
                 }
             }
           EPSDestroy(&eps);

@@ -14,7 +14,9 @@
 
 #include "dense_block.h"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace squeal
@@ -74,7 +76,6 @@ namespace squeal
         }
       released = false;
       Ar.assign(n_parts, Eigen::MatrixXd());
-      W.assign(n_parts, Eigen::MatrixXd());
       G.assign(n_parts, std::vector<Eigen::MatrixXd>(n_parts));
     }
 
@@ -88,8 +89,9 @@ namespace squeal
                         const KnownSymmetricModes *known)
     {
       make_reference_mass(model);
-      std::vector<Eigen::VectorXd> columns;
-      BandOptions                  sample_band = band;
+      // the basis vectors, sample after sample
+      Eigen::MatrixXd B(owned.n_elements(), 0);
+      BandOptions     sample_band = band;
       // every pair's K_n and K_t (at their reference stiffness)
       PETScMatrix K_n, K_t;
       const bool  has_normal  = model.sum(Kind::interface_normal, K_n),
@@ -100,18 +102,26 @@ namespace squeal
         physics::store_nonzeros_only(K_n, owned, comm);
       if (has_friction)
         physics::store_nonzeros_only(K_t, owned, comm);
+      const auto reference_mass = model.coefficients(model.reference).mass;
       for (unsigned int i = 0; i < samples.size(); ++i)
         {
           const auto &s = samples[i];
-          PETScMatrix K, M;
+          const auto  c = model.coefficients(s);
+          PETScMatrix K, M_sample;
           model.symmetric_stiffness(s, K);
-          model.mass(s, M);
-          // on its nonzeros: the eigensolver multiplies by M some 600 times
-          physics::store_nonzeros_only(M, owned, comm);
+          // the reference mass unless the sample changes it
+          const bool         own_mass = c.mass != reference_mass;
+          const PETScMatrix &M        = own_mass ? M_sample : M_ref;
+          if (own_mass)
+            {
+              model.mass(s, M_sample);
+              // on its nonzeros: the eigensolver multiplies by M some 600
+              // times
+              physics::store_nonzeros_only(M_sample, owned, comm);
+            }
           pcout << "  reduced basis: sample " << i + 1 << " of "
                 << samples.size() << std::endl;
           const double              top = band_factor * band.f_max;
-          const auto                c   = model.coefficients(s);
           std::vector<UndampedMode> modes;
           if (known && known->top_hz >= top && known->mass == c.mass &&
               known->symmetric_stiffness == c.symmetric_stiffness)
@@ -133,70 +143,78 @@ namespace squeal
           // interface forces K^-1 K_n phi corrects the damped shapes; the
           // friction forces give K^-1 K_t phi, K^-1 K_t K^-1 K_t phi, ...
           // (each force scaled to unit norm; a zero force adds nothing and
-          // ends its mode's chain).
-          const int       m = modes.size();
-          Eigen::MatrixXd Phi(owned.n_elements(), m);
+          // ends its mode's chain). The sample's vectors in one block of
+          // blocks [Phi, K^-1 K_n Phi, K^-1 K_t Phi, ...], each response
+          // solved into its place.
+          const int          m = modes.size();
+          const unsigned int n_normal =
+                               enrichment_depth > 0 && has_normal ? 1 : 0,
+                             n_friction = has_friction ? enrichment_depth : 0;
+          Eigen::MatrixXd S(owned.n_elements(),
+                            m * (1 + n_normal + n_friction));
           for (int j = 0; j < m; ++j)
-            Phi.col(j) = local_part(modes[j].re, owned);
+            S.col(j) = local_part(modes[j].re, owned);
+          std::vector<UndampedMode>().swap(modes);
+          std::vector<bool>             alive(S.cols(), true);
           std::unique_ptr<DirectSolver> solver;
-          if (enrichment_depth > 0)
+          if (n_normal + n_friction > 0)
             solver = std::make_unique<DirectSolver>(K, true);
-          // K^-1 F for the forces F = A X scaled to unit norm; alive[j]
-          // false for a zero force (its column of the result is zero)
-          const auto responses = [&](const PETScMatrix     &A,
-                                     const Eigen::MatrixXd &X,
-                                     std::vector<bool>     &alive) {
-            Eigen::MatrixXd       F     = multiply(A, X);
-            const Eigen::VectorXd norms = internal::column_norms(F, comm);
-            for (int j = 0; j < m; ++j)
+          // block @p to := K^-1 F for the forces F = A (block @p from)
+          // scaled to unit norm; a zero force (or a dead chain) leaves a
+          // dead column
+          const auto respond =
+            [&](const PETScMatrix &A, const int from, const int to) {
+              Eigen::MatrixXd       F = multiply(A, S.middleCols(from * m, m));
+              const Eigen::VectorXd norms = internal::column_norms(F, comm);
+              for (int j = 0; j < m; ++j)
+                {
+                  alive[to * m + j] = alive[from * m + j] && norms[j] > 0.;
+                  if (alive[to * m + j])
+                    F.col(j) /= norms[j];
+                  else
+                    F.col(j).setZero();
+                }
+              internal::solve_block(solver->handle(),
+                                    K,
+                                    F,
+                                    S.middleCols(to * m, m));
+            };
+          if (n_normal > 0)
+            respond(K_n, 0, 1);
+          for (unsigned int level = 0; level < n_friction; ++level)
+            respond(K_t,
+                    level == 0 ? 0 : n_normal + level,
+                    1 + n_normal + level);
+          solver.reset();
+          // the live columns, moved to the front in place
+          Eigen::Index live = 0;
+          for (Eigen::Index j = 0; j < S.cols(); ++j)
+            if (alive[j])
               {
-                alive[j] = alive[j] && norms[j] > 0.;
-                if (alive[j])
-                  F.col(j) /= norms[j];
-                else
-                  F.col(j).setZero();
+                if (live != j)
+                  S.col(live) = S.col(j);
+                ++live;
               }
-            return internal::solve_block(solver->handle(), K, F);
-          };
-          std::vector<bool> normal(m, enrichment_depth > 0 && has_normal);
-          Eigen::MatrixXd   normal_response;
-          if (enrichment_depth > 0 && has_normal)
-            normal_response = responses(K_n, Phi, normal);
-          std::vector<std::vector<bool>> friction;
-          std::vector<Eigen::MatrixXd>   friction_response;
-          for (unsigned int level = 0; level < enrichment_depth && has_friction;
-               ++level)
+          S.conservativeResize(Eigen::NoChange, live);
+          if (B.cols() == 0)
+            B.swap(S);
+          else
             {
-              friction.push_back(level == 0 ? std::vector<bool>(m, true) :
-                                              friction.back());
-              friction_response.push_back(
-                responses(K_t,
-                          level == 0 ? Phi : friction_response.back(),
-                          friction.back()));
-            }
-          for (int j = 0; j < m; ++j)
-            {
-              columns.push_back(Phi.col(j));
-              if (normal[j])
-                columns.push_back(normal_response.col(j));
-              for (unsigned int level = 0; level < friction.size(); ++level)
-                if (friction[level][j])
-                  columns.push_back(friction_response[level].col(j));
+              const Eigen::Index before = B.cols();
+              B.conservativeResize(Eigen::NoChange, before + live);
+              B.rightCols(live) = S;
             }
         }
-      if (Utilities::MPI::max(columns.size(), comm) == 0)
+      if (Utilities::MPI::max(B.cols(), comm) == 0)
         throw std::runtime_error(
           "reduced basis: no undamped mode in " + std::to_string(band.f_min) +
           "-" + std::to_string(band_factor * band.f_max) +
           " Hz at any basis sample: nothing to project on (check "
           "Eigensolver/Minimum and Maximum frequency against the materials "
           "and the mesh)");
-      Eigen::MatrixXd B(owned.n_elements(), columns.size());
-      for (unsigned int j = 0; j < columns.size(); ++j)
-        B.col(j) = columns[j];
-      columns.clear();
+      const Eigen::Index n_vectors = B.cols();
       project(model, B, true);
-      pcout << "  reduced basis: " << B.cols() << " vectors, " << V.cols()
+      pcout << "  reduced basis: " << n_vectors << " vectors, " << V.cols()
             << " M-orthonormal directions kept" << std::endl;
     }
 
@@ -218,39 +236,84 @@ namespace squeal
                           const bool                  with_residuals)
     {
       // Orthonormalise first, so that the sparse products act on the kept
-      // directions only (often a third of the vectors).
+      // directions only (often a third of the vectors); B becomes V in
+      // place (the Gram matrix from blocks of 64 columns of M B).
       {
-        Eigen::MatrixXd MB   = multiply(M_ref, B);
-        Eigen::MatrixXd gram = B.transpose() * MB;
+        constexpr Eigen::Index width = 64;
+        Eigen::MatrixXd        gram(B.cols(), B.cols());
+        for (Eigen::Index c = 0; c < B.cols(); c += width)
+          {
+            const Eigen::Index w = std::min(width, B.cols() - c);
+            gram.middleCols(c, w).noalias() =
+              B.transpose() * multiply(M_ref, B.middleCols(c, w));
+          }
         sum_over_ranks(gram, comm);
-        V = B * orthonormalising_transform(gram);
+        internal::multiply_in_place(B, orthonormalising_transform(gram));
+        V.swap(B);
+        B.resize(0, 0);
       }
+      // V^T A_k V and the Gram matrices (A_k V)^T (A_l V) on the rows
+      // where A_k has entries (a spring set's few rows, an interface's
+      // face, a body's own DoFs), a block of rows at a time: A_k V is
+      // never held whole (n x r for a body's part)
       const unsigned int n_parts = active.size();
-      // A_k V on the rows where A_k has entries (a spring set's few rows,
-      // an interface's face, a body's own DoFs)
-      for (unsigned int k = 0; k < n_parts; ++k)
-        if (active[k])
-          W[k] = multiply(model.matrix(k), V)(rows[k], all);
-        else
-          W[k].resize(0, 0);
-
+      const int          r       = V.cols();
       for (unsigned int k = 0; k < n_parts; ++k)
         {
-          if (!active[k])
-            {
-              Ar[k] = Eigen::MatrixXd::Zero(V.cols(), V.cols());
-              continue;
-            }
-          Ar[k] = V(rows[k], all).transpose() * W[k];
-          sum_over_ranks(Ar[k], comm);
-          std::vector<int> in_k, in_l;
-          for (unsigned int l = k; l < n_parts && with_residuals; ++l)
-            if (active[l])
+          Ar[k] = Eigen::MatrixXd::Zero(r, r);
+          for (unsigned int l = 0; l < n_parts; ++l)
+            G[k][l] = with_residuals && l >= k && active[k] && active[l] ?
+                        Eigen::MatrixXd::Zero(r, r) :
+                        Eigen::MatrixXd();
+        }
+      {
+        const internal::RowMatrix                                Vr = V;
+        std::vector<std::unique_ptr<const internal::RowProduct>> products(
+          n_parts);
+        for (unsigned int k = 0; k < n_parts; ++k)
+          if (active[k])
+            products[k] =
+              std::make_unique<const internal::RowProduct>(model.matrix(k), Vr);
+        constexpr int                    height = 4096;
+        std::vector<std::size_t>         next(n_parts, 0);
+        std::vector<std::vector<int>>    in_block(n_parts);
+        std::vector<internal::RowMatrix> P(n_parts);
+        std::vector<int>                 in_k, in_l;
+        for (int first = 0; first < Vr.rows(); first += height)
+          {
+            const int end = std::min<int>(first + height, Vr.rows());
+            for (unsigned int k = 0; k < n_parts; ++k)
               {
-                internal::common_positions(rows[k], rows[l], in_k, in_l);
-                G[k][l] = W[k](in_k, all).transpose() * W[l](in_l, all);
-                sum_over_ranks(G[k][l], comm);
+                in_block[k].clear();
+                if (!active[k])
+                  continue;
+                for (; next[k] < rows[k].size() && rows[k][next[k]] < end;
+                     ++next[k])
+                  in_block[k].push_back(rows[k][next[k]]);
+                if (in_block[k].empty())
+                  continue;
+                P[k] = products[k]->rows(in_block[k]);
+                Ar[k].noalias() += Vr(in_block[k], all).transpose() * P[k];
               }
+            for (unsigned int k = 0; k < n_parts && with_residuals; ++k)
+              for (unsigned int l = k; l < n_parts; ++l)
+                if (!in_block[k].empty() && !in_block[l].empty())
+                  {
+                    internal::common_positions(in_block[k],
+                                               in_block[l],
+                                               in_k,
+                                               in_l);
+                    G[k][l].noalias() +=
+                      P[k](in_k, all).transpose() * P[l](in_l, all);
+                  }
+          }
+      }
+      for (unsigned int k = 0; k < n_parts; ++k)
+        {
+          sum_over_ranks(Ar[k], comm);
+          for (unsigned int l = k; l < n_parts && with_residuals; ++l)
+            if (active[k] && active[l])
+              sum_over_ranks(G[k][l], comm);
         }
       has_residuals = with_residuals;
     }
@@ -388,12 +451,12 @@ namespace squeal
       const auto combine = [&](const physics::MatrixParts::Coefficients &a) {
         return projected_sum(Ar, active, a, r);
       };
-      // sum_k a_k A_k V from the parts' rows
+      // sum_k a_k A_k V, one sparse product per part (collective)
       const auto expand = [&](const physics::MatrixParts::Coefficients &a) {
         Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(V.rows(), V.cols());
         for (unsigned int k = 0; k < n_parts; ++k)
           if (active[k] && a[k] != 0.)
-            sum(rows[k], all) += a[k] * W[k];
+            internal::multiply_add(parts.matrix(k), a[k], V, sum);
         return sum;
       };
       Projection result;
@@ -426,8 +489,6 @@ namespace squeal
     void
     ReducedModel::release_products()
     {
-      for (auto &w : W)
-        Eigen::MatrixXd().swap(w);
       for (auto &row : G)
         for (auto &g : row)
           Eigen::MatrixXd().swap(g);

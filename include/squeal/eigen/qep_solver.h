@@ -76,7 +76,9 @@ namespace squeal
     {
       std::complex<double> omega2;
       PETScVector          re;
-      PETScVector          im; ///< zero unless omega2 is complex
+      /// zero unless omega2 is complex; empty (size 0) for the modes of a
+      /// symmetric pencil, which are real
+      PETScVector im;
     };
 
     /**

@@ -130,10 +130,11 @@ namespace squeal
             const double                   f_max) const;
 
       /**
-       * The basis and its products at the point @p p (no sparse work: the
-       * stored products of every part are combined); without
+       * The basis and its products at the point @p p (one sparse product
+       * A_k V per part that enters them, collective); without
        * @p with_products, Projection::MV, CV and KV are left empty (three
-       * n x r blocks less).
+       * n x r blocks less, and no sparse product unless modal damping
+       * needs M V).
        * @throws std::runtime_error if @p p lacks a parameter of the model.
        */
       Projection
@@ -141,9 +142,9 @@ namespace squeal
                  const bool                     with_products = true) const;
 
       /**
-       * Frees the parts' products A_k V and their Gram matrices once no
-       * more sweep point is solved (about 2 GB of the 91 374-DoF brake's
-       * CEA): expand(), size() and projected_part() stay valid.
+       * Frees the Gram matrices of the parts' products once no more sweep
+       * point is solved (the parts squared times r^2 doubles): expand(),
+       * size() and projected_part() stay valid.
        * solve() and projection() throw std::logic_error until
        * build() or build_from_vectors() is called again.
        */
@@ -200,9 +201,7 @@ namespace squeal
       Eigen::MatrixXd V;                  ///< n_local x r, M-orthonormal
       std::vector<Eigen::MatrixXd> Ar;    ///< V^T A_k V
       /// the local rows where A_k has a nonzero entry (ascending)
-      std::vector<std::vector<int>> rows;
-      /// A_k V on rows[k] only (|rows[k]| x r)
-      std::vector<Eigen::MatrixXd>              W;
+      std::vector<std::vector<int>>             rows;
       std::vector<std::vector<Eigen::MatrixXd>> G; ///< (A_k V)^T (A_l V)
       dealii::IndexSet                          owned;
       MPI_Comm                                  comm;
