@@ -11,7 +11,8 @@
 // the dense parts: the matrix above with a third of its entries stored
 // as zeros (a part on the common pattern), a part on its own pattern of
 // 12 scattered rows with long-range couplings, and an empty part; two
-// coefficient vectors, one of which skips a part. The same product added
+// coefficient vectors, one of which skips a part, and the transposed
+// product of the part that is not symmetric. The same product added
 // to a block with values (multiply_add), chosen rows of it from a
 // row-major block (RowProduct, as the reduced basis' projection forms
 // them), and B T formed in place (multiply_in_place) against B T.
@@ -209,6 +210,8 @@ main(int argc, char **argv)
   physics::MatrixParts model;
   for (const auto &p : parts)
     model.parts.push_back({&p});
+  // the second part is not symmetric: a friction part, kept transposed too
+  model.parts[1].kind = physics::MatrixParts::Kind::interface_friction;
   const eigen::internal::PartsProduct product(model);
   const std::vector<double>           c1{1.5, -0.5, 3.}, c2{0., 2., 0.};
   for (const int columns : {150, 0})
@@ -247,7 +250,27 @@ main(int argc, char **argv)
                             scale);
         }
       if (columns == 0)
-        test_tools::check(name + "no columns", sums[0].cols(), 0, 0., 1.);
+        {
+          test_tools::check(name + "no columns", sums[0].cols(), 0, 0., 1.);
+          continue;
+        }
+      // the transposed product of the friction part
+      const auto transposed =
+        product.multiply({&c2}, B.middleRows(first, last - first), true);
+      const Eigen::MatrixXd reference =
+        (2. * dense_parts[1].transpose() * B).middleRows(first, last - first);
+      const double scale =
+        Utilities::MPI::max(reference.cwiseAbs().maxCoeff(), MPI_COMM_WORLD);
+      const double error =
+        Utilities::MPI::max((transposed[0] - reference).cwiseAbs().maxCoeff(),
+                            MPI_COMM_WORLD);
+      test_tools::check_true(name + "the transposed sum is not zero",
+                             scale > 1.);
+      test_tools::check(name + "2 A_2^T B against the dense transpose",
+                        error,
+                        0.,
+                        1e-13,
+                        scale);
     }
   return test_tools::finish();
 }

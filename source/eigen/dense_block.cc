@@ -421,7 +421,11 @@ namespace squeal
           std::vector<int>    rows, outer, inner;
           std::vector<double> values;
         };
-        std::vector<Part>                parts;
+        std::vector<Part> parts;
+        // the transposes of the parts that are not symmetric (no rows for
+        // a symmetric part)
+        std::vector<Part>                transposed;
+        std::vector<bool>                has_transpose;
         int                              n_local = 0, n_ghost = 0;
         std::unique_ptr<const GhostRows> ghosts;
       };
@@ -430,18 +434,39 @@ namespace squeal
         : data(std::make_unique<Data>())
       {
         Data &d = *data;
-        // the ghost columns of every part, in one ascending numbering
+        // a friction part (the only kind that is not symmetric) is copied
+        // transposed too
+        const unsigned int n_parts = model.size();
+        std::vector<Mat>   transposes(n_parts, nullptr);
+        d.has_transpose.assign(n_parts, false);
+        for (unsigned int k = 0; k < n_parts; ++k)
+          if (model.parts[k].kind ==
+              physics::MatrixParts::Kind::interface_friction)
+            {
+              check_petsc(MatTranspose(model.matrix(k),
+                                       MAT_INITIAL_MATRIX,
+                                       &transposes[k]),
+                          "parts product",
+                          "MatTranspose");
+              d.has_transpose[k] = true;
+            }
+        // the ghost columns of every part and transpose, in one ascending
+        // numbering
         std::vector<PetscInt>  ghost_columns;
-        std::vector<AijBlocks> blocks;
-        bool                   is_mpi = false;
-        for (unsigned int k = 0; k < model.size(); ++k)
+        std::vector<AijBlocks> blocks, transposed_blocks;
+        bool                   is_mpi     = false;
+        const auto             add_ghosts = [&](const AijBlocks &b) {
+          is_mpi = is_mpi || b.is_mpi;
+          if (b.is_mpi)
+            ghost_columns.insert(ghost_columns.end(),
+                                 b.colmap,
+                                 b.colmap + b.n_ghost);
+        };
+        for (unsigned int k = 0; k < n_parts; ++k)
           {
-            const AijBlocks &b = blocks.emplace_back(model.matrix(k));
-            is_mpi             = is_mpi || b.is_mpi;
-            if (b.is_mpi)
-              ghost_columns.insert(ghost_columns.end(),
-                                   b.colmap,
-                                   b.colmap + b.n_ghost);
+            add_ghosts(blocks.emplace_back(model.matrix(k)));
+            if (transposes[k])
+              add_ghosts(transposed_blocks.emplace_back(transposes[k]));
           }
         std::sort(ghost_columns.begin(), ghost_columns.end());
         ghost_columns.erase(std::unique(ghost_columns.begin(),
@@ -457,53 +482,62 @@ namespace squeal
           d.ghosts = std::make_unique<const GhostRows>(model.matrix(0),
                                                        d.n_ghost,
                                                        ghost_columns.data());
-        for (unsigned int k = 0; k < model.size(); ++k)
+        // a matrix's nonzero rows in the common column numbering
+        const auto copy = [&](const AijBlocks &b) {
+          const CsrView                  diagonal(b.diagonal);
+          std::unique_ptr<const CsrView> off;
+          if (b.off_diagonal)
+            off = std::make_unique<const CsrView>(b.off_diagonal);
+          // the position of each of this part's ghost columns
+          std::vector<int> ghost(b.n_ghost);
+          for (PetscInt j = 0; j < b.n_ghost; ++j)
+            ghost[j] = d.n_local + (std::lower_bound(ghost_columns.begin(),
+                                                     ghost_columns.end(),
+                                                     b.colmap[j]) -
+                                    ghost_columns.begin());
+          Data::Part part;
+          part.outer.push_back(0);
+          const auto dm = diagonal.map();
+          for (int i = 0; i < d.n_local; ++i)
+            {
+              const std::size_t before = part.values.size();
+              for (std::decay_t<decltype(dm)>::InnerIterator it(dm, i); it;
+                   ++it)
+                if (it.value() != 0.)
+                  {
+                    part.inner.push_back(it.col());
+                    part.values.push_back(it.value());
+                  }
+              if (off)
+                {
+                  const auto om = off->map();
+                  for (std::decay_t<decltype(om)>::InnerIterator it(om, i); it;
+                       ++it)
+                    if (it.value() != 0.)
+                      {
+                        part.inner.push_back(ghost[it.col()]);
+                        part.values.push_back(it.value());
+                      }
+                }
+              if (part.values.size() > before)
+                {
+                  part.rows.push_back(i);
+                  part.outer.push_back(part.values.size());
+                }
+            }
+          return part;
+        };
+        d.transposed.resize(n_parts);
+        for (unsigned int k = 0, t = 0; k < n_parts; ++k)
           {
-            const AijBlocks               &b = blocks[k];
-            const CsrView                  diagonal(b.diagonal);
-            std::unique_ptr<const CsrView> off;
-            if (b.off_diagonal)
-              off = std::make_unique<const CsrView>(b.off_diagonal);
-            // the position of each of this part's ghost columns
-            std::vector<int> ghost(b.n_ghost);
-            for (PetscInt j = 0; j < b.n_ghost; ++j)
-              ghost[j] = d.n_local + (std::lower_bound(ghost_columns.begin(),
-                                                       ghost_columns.end(),
-                                                       b.colmap[j]) -
-                                      ghost_columns.begin());
-            Data::Part part;
-            part.outer.push_back(0);
-            const auto dm = diagonal.map();
-            for (int i = 0; i < d.n_local; ++i)
-              {
-                const std::size_t before = part.values.size();
-                for (std::decay_t<decltype(dm)>::InnerIterator it(dm, i); it;
-                     ++it)
-                  if (it.value() != 0.)
-                    {
-                      part.inner.push_back(it.col());
-                      part.values.push_back(it.value());
-                    }
-                if (off)
-                  {
-                    const auto om = off->map();
-                    for (std::decay_t<decltype(om)>::InnerIterator it(om, i);
-                         it;
-                         ++it)
-                      if (it.value() != 0.)
-                        {
-                          part.inner.push_back(ghost[it.col()]);
-                          part.values.push_back(it.value());
-                        }
-                  }
-                if (part.values.size() > before)
-                  {
-                    part.rows.push_back(i);
-                    part.outer.push_back(part.values.size());
-                  }
-              }
-            d.parts.push_back(std::move(part));
+            d.parts.push_back(copy(blocks[k]));
+            if (transposes[k])
+              d.transposed[k] = copy(transposed_blocks[t++]);
           }
+        transposed_blocks.clear();
+        for (Mat &t : transposes)
+          if (t)
+            MatDestroy(&t);
       }
 
       PartsProduct::~PartsProduct() = default;
@@ -511,7 +545,8 @@ namespace squeal
       std::vector<Eigen::MatrixXd>
       PartsProduct::multiply(
         const std::vector<const physics::MatrixParts::Coefficients *> &c,
-        Eigen::Ref<const Eigen::MatrixXd>                              B) const
+        Eigen::Ref<const Eigen::MatrixXd>                              B,
+        const bool transposed) const
       {
         const Data        &d = *data;
         const unsigned int q = c.size();
@@ -538,7 +573,9 @@ namespace squeal
             std::vector<RowBlock> sums(q, RowBlock::Zero(d.n_local, w));
             for (unsigned int k = 0; k < d.parts.size(); ++k)
               {
-                const Data::Part &p    = d.parts[k];
+                const Data::Part &p    = transposed && d.has_transpose[k] ?
+                                           d.transposed[k] :
+                                           d.parts[k];
                 bool              used = false;
                 for (unsigned int i = 0; i < q; ++i)
                   used = used || (*c[i])[k] != 0.;

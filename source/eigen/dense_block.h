@@ -117,7 +117,8 @@ namespace squeal
        * once for every part. The cost of a product is about that of M(p)
        * and K_s(p) on their nonzeros, against M(p), C(p) and K(p) for
        * three products (C(p) = alpha M + beta K_s on the whole pattern).
-       * Memory: 12 bytes per nonzero of the parts.
+       * Memory: 12 bytes per nonzero of the parts (twice for a friction
+       * part).
        */
       class PartsProduct
       {
@@ -136,12 +137,15 @@ namespace squeal
         /**
          * sum_k c[i][k] A_k B for each coefficient vector c[i] (one per
          * part), for the locally owned rows of a dense n x m block B, as
-         * the local rows of n x m results (collective).
+         * the local rows of n x m results (collective); with
+         * @p transposed, sum_k c[i][k] A_k^T B (the friction parts, the
+         * only ones that are not symmetric, are kept transposed too).
          */
         std::vector<Eigen::MatrixXd>
         multiply(
           const std::vector<const physics::MatrixParts::Coefficients *> &c,
-          Eigen::Ref<const Eigen::MatrixXd> B) const;
+          Eigen::Ref<const Eigen::MatrixXd>                              B,
+          const bool transposed = false) const;
 
       private:
         struct Data;

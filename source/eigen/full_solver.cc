@@ -470,8 +470,9 @@ namespace squeal
       : model(model)
       , band(band)
     {
-      if (band.store_products)
-        parts = std::make_unique<const internal::PartsProduct>(model);
+      // M, C and K at a point are never formed (three matrices of the
+      // common pattern): every product comes from the parts
+      parts = std::make_unique<const internal::PartsProduct>(model);
     }
 
     PairRefiner::~PairRefiner() = default;
@@ -487,28 +488,25 @@ namespace squeal
       k.insert(k.end(),
                c.symmetric_stiffness.begin(),
                c.symmetric_stiffness.end());
-      // with the parts, M(p), C(p) and K(p) are never formed: the
+      // M(p), C(p) and K(p) are never formed (M only for P): the
       // subspace's products come from the parts
-      PETScMatrix M, C, K;
-      if (!parts || !solver || k != key)
-        model.mass(point, M);
+      const PETScMatrix M, C, K;
       if (!solver || k != key)
         {
           // P = K_s + (2 pi f_t)^2 M: positive definite, one Cholesky
           const auto start = std::chrono::steady_clock::now();
           solver.reset();
           model.symmetric_stiffness(point, P);
-          const double w_t = 2. * numbers::PI * band.target_frequency;
-          internal::add_scaled(P, w_t * w_t, M);
+          {
+            PETScMatrix mass;
+            model.mass(point, mass);
+            const double w_t = 2. * numbers::PI * band.target_frequency;
+            internal::add_scaled(P, w_t * w_t, mass);
+          }
           solver = std::make_unique<DirectSolver>(P, true);
           key    = k;
           ++n_factorisations;
           seconds_factorising += seconds_since(start);
-        }
-      if (!parts)
-        {
-          model.damping(point, C);
-          model.stiffness(point, K);
         }
       if (band.store_products && start.MV.cols() != start.V.cols())
         throw std::logic_error(
@@ -520,8 +518,7 @@ namespace squeal
                  std::move(start),
                  band.store_products,
                  model.matrix(0).get_mpi_communicator());
-      if (parts)
-        s.use_parts(*parts, c, true);
+      s.use_parts(*parts, c, true);
       const unsigned int                   n_pairs = lambda.size();
       std::vector<internal::ProjectedPair> pairs(n_pairs);
       for (unsigned int j = 0; j < n_pairs; ++j)

@@ -30,18 +30,16 @@ namespace squeal
         }
 
         // view := [view Y], Y freed: in place while @p storage has room for
-        // Y's columns, else in a new storage with room for twice the
-        // columns needed (only the columns written become resident)
+        // Y's columns, else the storage is enlarged to room for twice the
+        // columns needed (only the columns written become resident; the
+        // column-major storage grows at its end, so realloc keeps the
+        // columns in place or moves their pages without a copy)
         void
         extend(View &view, Eigen::MatrixXd &storage, Eigen::MatrixXd &Y)
         {
           const Eigen::Index n = Y.rows(), r = view.cols(), q = Y.cols();
           if (storage.cols() < r + q)
-            {
-              Eigen::MatrixXd larger(n, 2 * (r + q));
-              larger.leftCols(r) = view;
-              storage.swap(larger);
-            }
+            storage.conservativeResize(n, 2 * (r + q));
           storage.middleCols(r, q) = Y;
           Y.resize(0, 0);
           new (&view) View(storage.data(), n, r + q);
@@ -187,6 +185,22 @@ namespace squeal
         return {{std::move(CK[0]), std::move(CK[1])}};
       }
 
+      std::array<Eigen::MatrixXd, 2>
+      Subspace::transposed_damping_and_stiffness_times(
+        Eigen::Ref<const Eigen::MatrixXd> N) const
+      {
+        if (!parts)
+          throw std::logic_error(
+            "Subspace: C^T N and K^T N need the model's parts");
+        auto CK =
+          parts->multiply({&coefficients.damping, &coefficients.stiffness},
+                          N,
+                          true);
+        // the modal damping U diag(d) U^T is symmetric
+        add_modal_damping(CK[0], N);
+        return {{std::move(CK[0]), std::move(CK[1])}};
+      }
+
       std::array<Eigen::MatrixXd, 3>
       Subspace::products(const Eigen::MatrixXd &Q) const
       {
@@ -314,8 +328,9 @@ namespace squeal
               }
             else
               {
-                Cr = project(V, damping_times(V));
-                Kr = project(V, multiply(K, V));
+                auto CK = damping_and_stiffness_times(V);
+                Cr      = project(V, CK[0]);
+                Kr      = project(V, CK[1]);
               }
             return;
           }
@@ -346,6 +361,16 @@ namespace squeal
             extend(WM, storage[1], NM);
             extend(WC, storage[2], NC);
             extend(WK, storage[3], NK);
+          }
+        else if (parts)
+          {
+            // N^T A V = (A^T N)^T V, A^T N from the parts
+            grow_mass(NM);
+            NM.resize(0, 0);
+            auto CK  = damping_and_stiffness_times(N);
+            auto CKt = transposed_damping_and_stiffness_times(N);
+            grow(Cr, CK[0], project(CKt[0], V));
+            grow(Kr, CK[1], project(CKt[1], V));
           }
         else
           {

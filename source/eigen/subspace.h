@@ -99,8 +99,9 @@ namespace squeal
          * With parts (use_parts()): C N and K N of new blocks and Ritz
          * vectors from the model's parts and the point's coefficients, one
          * pass over the parts instead of products with C and K, which
-         * are then not read (set for stored products only: without them
-         * the projection's new rows need C^T and K^T).
+         * are then not read (without stored products the projection's
+         * new rows N^T A V = (A^T N)^T V come from the parts too, and
+         * #Ct, #Kt are not made).
          */
         const PartsProduct               *parts = nullptr;
         physics::MatrixParts::Combination coefficients;
@@ -158,6 +159,15 @@ namespace squeal
         /** C N. */
         Eigen::MatrixXd
         damping_times(Eigen::Ref<const Eigen::MatrixXd> N) const;
+
+        /**
+         * C^T N and K^T N from #parts (n x m each for the local rows of an
+         * n x m N).
+         * @throws std::logic_error without parts.
+         */
+        std::array<Eigen::MatrixXd, 2>
+        transposed_damping_and_stiffness_times(
+          Eigen::Ref<const Eigen::MatrixXd> N) const;
 
         /** M V Q, C V Q and K V Q (n x columns of the r x m block Q). */
         std::array<Eigen::MatrixXd, 3>

@@ -247,7 +247,8 @@ namespace squeal
       std::vector<double>           key; ///< M and K_s coefficients of P
       PETScMatrix                   P;
       std::unique_ptr<DirectSolver> solver;
-      /// the model's parts for the products C N and K N (stored products)
+      /// the model's parts for every product M N, C N, K N and C^T N,
+      /// K^T N (M, C and K are never formed)
       std::unique_ptr<const internal::PartsProduct> parts;
       unsigned int                                  n_factorisations    = 0;
       double                                        seconds_factorising = 0.;
