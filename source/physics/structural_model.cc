@@ -176,6 +176,14 @@ namespace squeal
       std::vector<types::global_dof_index> columns;
       std::vector<PetscScalar>             values;
       start.reserve(owned.n_elements() + 1);
+      {
+        // room for every stored entry: the pages never written stay
+        // virtual, and the arrays are not copied as they grow
+        MatInfo info;
+        MatGetInfo(A, MAT_LOCAL, &info);
+        columns.reserve(static_cast<std::size_t>(info.nz_used));
+        values.reserve(static_cast<std::size_t>(info.nz_used));
+      }
       for (const auto row : owned)
         {
           PetscInt           n_cols     = 0;
