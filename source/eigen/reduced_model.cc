@@ -76,6 +76,7 @@ namespace squeal
         }
       released = false;
       Ar.assign(n_parts, Eigen::MatrixXd());
+      std::vector<Eigen::MatrixXd>().swap(W);
       G.assign(n_parts, std::vector<Eigen::MatrixXd>(n_parts));
     }
 
@@ -454,12 +455,25 @@ namespace squeal
       const auto combine = [&](const physics::MatrixParts::Coefficients &a) {
         return projected_sum(Ar, active, a, r);
       };
-      // sum_k a_k A_k V, one sparse product per part (collective)
+      // sum_k a_k A_k V: from the kept products on their rows, or one
+      // sparse product per part (collective)
+      if (with_products && W.empty())
+        {
+          W.assign(n_parts, Eigen::MatrixXd());
+          for (unsigned int k = 0; k < n_parts; ++k)
+            if (active[k])
+              W[k] = multiply(parts.matrix(k), V)(rows[k], all);
+        }
       const auto expand = [&](const physics::MatrixParts::Coefficients &a) {
         Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(V.rows(), V.cols());
         for (unsigned int k = 0; k < n_parts; ++k)
           if (active[k] && a[k] != 0.)
-            internal::multiply_add(parts.matrix(k), a[k], V, sum);
+            {
+              if (!W.empty())
+                sum(rows[k], all) += a[k] * W[k];
+              else
+                internal::multiply_add(parts.matrix(k), a[k], V, sum);
+            }
         return sum;
       };
       Projection result;
@@ -495,6 +509,7 @@ namespace squeal
       for (auto &row : G)
         for (auto &g : row)
           Eigen::MatrixXd().swap(g);
+      std::vector<Eigen::MatrixXd>().swap(W);
       has_residuals = false;
       released      = true;
     }

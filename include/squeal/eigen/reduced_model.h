@@ -130,11 +130,13 @@ namespace squeal
             const double                   f_max) const;
 
       /**
-       * The basis and its products at the point @p p (one sparse product
-       * A_k V per part that enters them, collective); without
-       * @p with_products, Projection::MV, CV and KV are left empty (three
-       * n x r blocks less, and no sparse product unless modal damping
-       * needs M V).
+       * The basis and its products at the point @p p, combined from the
+       * parts' products A_k V on their rows, which the first call forms
+       * (one sparse product per part, collective) and keeps until
+       * release_products(); without @p with_products, Projection::MV, CV
+       * and KV are left empty (three n x r blocks less, and no part's
+       * product is formed or kept unless modal damping needs M V, which is
+       * then formed part by part).
        * @throws std::runtime_error if @p p lacks a parameter of the model.
        */
       Projection
@@ -142,8 +144,8 @@ namespace squeal
                  const bool                     with_products = true) const;
 
       /**
-       * Frees the Gram matrices of the parts' products once no more sweep
-       * point is solved (the parts squared times r^2 doubles): expand(),
+       * Frees the Gram matrices of the parts' products and the products
+       * kept by projection() once no more sweep point is solved: expand(),
        * size() and projected_part() stay valid.
        * solve() and projection() throw std::logic_error until
        * build() or build_from_vectors() is called again.
@@ -203,8 +205,12 @@ namespace squeal
       /// the local rows where A_k has a nonzero entry (ascending)
       std::vector<std::vector<int>>             rows;
       std::vector<std::vector<Eigen::MatrixXd>> G; ///< (A_k V)^T (A_l V)
-      dealii::IndexSet                          owned;
-      MPI_Comm                                  comm;
+      /// A_k V on rows[k] only (|rows[k]| x r), formed by the first
+      /// projection() with products and kept for the next ones (a
+      /// certification asks for one per point); empty until then
+      mutable std::vector<Eigen::MatrixXd> W;
+      dealii::IndexSet                     owned;
+      MPI_Comm                             comm;
     };
 
   } // namespace eigen
