@@ -32,6 +32,7 @@ namespace squeal
   {
     using namespace dealii;
     using internal::ArpackModes;
+    using internal::BlockModes;
     using internal::multiply;
     using internal::PointMatrices;
     using internal::residuals;
@@ -222,11 +223,17 @@ namespace squeal
       const double                    t_count = seconds_since(start);
       std::unique_ptr<SymmetricModes> slepc;
       std::unique_ptr<ArpackModes>    arpack;
+      std::unique_ptr<BlockModes>     block;
       std::vector<UndampedMode>       modes;
       if (band.symmetric_solver == "arpack")
         {
           arpack = std::make_unique<ArpackModes>(K_s, M, sigma, band.tolerance);
           modes  = arpack->solve(M, r.symmetric_in_basis, top);
+        }
+      else if (band.symmetric_solver == "block")
+        {
+          block = std::make_unique<BlockModes>(K_s, M, sigma, band.tolerance);
+          modes = block->solve(M, r.symmetric_in_basis, top);
         }
       else
         {
@@ -234,7 +241,9 @@ namespace squeal
             std::make_unique<SymmetricModes>(K_s, M, sigma, band.tolerance);
           modes = slepc->solve(M, r.symmetric_in_basis, top);
         }
-      void *const factorised = arpack ? arpack->solver() : slepc->solver();
+      void *const factorised        = arpack ? arpack->solver() :
+                                      block  ? block->solver() :
+                                               slepc->solver();
       const auto  not_semi_definite = [&]() {
         return "the stiffness without friction is not positive "
                 "semi-definite (an eigenvalue below -(2 pi " +

@@ -12,9 +12,11 @@
 #include <slepceps.h>
 
 #include "dense_block.h"
+#include "symmetric_modes.h"
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -39,6 +41,93 @@ namespace squeal
                       A.get_mpi_communicator());
         return v;
       }
+
+      // The symmetric pencil's modes below f_top: exactly as many as the
+      // Sylvester inertia count gives, by the eigensolver that
+      // options.symmetric_solver names, then purified.
+      std::vector<UndampedMode>
+      symmetric_undamped(const PETScMatrix  &M,
+                         const PETScMatrix  &K,
+                         const BandOptions  &options,
+                         const double        sigma,
+                         const double        f_top,
+                         ConditionalOStream &pcout)
+      {
+        const double       w_1   = 2. * numbers::PI * f_top;
+        const double       top   = w_1 * w_1;
+        const unsigned int count = count_eigenvalues_below(K, M, {top})[0];
+        std::unique_ptr<internal::SymmetricModes> slepc;
+        std::unique_ptr<internal::ArpackModes>    arpack;
+        std::unique_ptr<internal::BlockModes>     block;
+        std::vector<UndampedMode>                 modes;
+        void                                     *ksp = nullptr;
+        std::string                               how;
+        if (options.symmetric_solver == "arpack")
+          {
+            arpack = std::make_unique<internal::ArpackModes>(K,
+                                                             M,
+                                                             sigma,
+                                                             options.tolerance);
+            modes  = arpack->solve(M, count, top);
+            ksp    = arpack->solver();
+          }
+        else if (options.symmetric_solver == "block")
+          {
+            block = std::make_unique<internal::BlockModes>(K,
+                                                           M,
+                                                           sigma,
+                                                           options.tolerance);
+            modes = block->solve(M, count, top);
+            ksp   = block->solver();
+            how   = ": " + std::to_string(block->block_solves) +
+                  " block solves of " + std::to_string(block->block_size) +
+                  " vectors, " + std::to_string(block->restarts) + " restarts";
+          }
+        else
+          {
+            slepc = std::make_unique<internal::SymmetricModes>(
+              K, M, sigma, options.tolerance);
+            modes = slepc->solve(M, count, top);
+            // the eigensolver's vectors are not needed any more; the
+            // factorisation stays for the purification
+            slepc->release_basis();
+            ksp = slepc->solver();
+          }
+        if (modes.size() != count)
+          throw std::runtime_error("undamped eigensolver (" +
+                                   options.symmetric_solver +
+                                   "): " + std::to_string(modes.size()) +
+                                   " modes below " + std::to_string(f_top) +
+                                   " Hz where the Sylvester inertia count "
+                                   "gives " +
+                                   std::to_string(count));
+        // one step of inverse iteration for all of them, x <- (K - sigma
+        // M)^-1 M x (it removes what the eigensolver's basis left along
+        // the other eigenvectors, as SLEPc's purification does), then unit
+        // M-norm; 64 modes at a time (three blocks of them in memory)
+        const IndexSet        owned = M.locally_owned_range_indices();
+        constexpr std::size_t width = 64;
+        for (std::size_t j0 = 0; j0 < modes.size(); j0 += width)
+          {
+            const std::size_t w = std::min(width, modes.size() - j0);
+            Eigen::MatrixXd   X(owned.n_elements(), w);
+            for (std::size_t j = 0; j < w; ++j)
+              X.col(j) = internal::local_part(modes[j0 + j].re, owned);
+            X = internal::solve_block(ksp, K, internal::multiply(M, X));
+            Eigen::MatrixXd norms =
+              X.cwiseProduct(internal::multiply(M, X)).colwise().sum();
+            internal::sum_over_ranks(norms, M.get_mpi_communicator());
+            for (std::size_t j = 0; j < w; ++j)
+              {
+                X.col(j) /= std::sqrt(norms(0, j));
+                internal::set_local_part(modes[j0 + j].re, X.col(j));
+              }
+          }
+        pcout << "  undamped eigensolver: " << modes.size() << " modes up to "
+              << f_top << " Hz, as many as the inertia count ("
+              << options.symmetric_solver << how << ")" << std::endl;
+        return modes;
+      }
     } // namespace
 
     std::vector<UndampedMode>
@@ -54,33 +143,23 @@ namespace squeal
       const double   w_1    = 2. * numbers::PI * options.f_max * factor;
       const double   needed = w_1 * w_1 - sigma;
       const PetscInt n      = M.m();
-      PetscInt       nev    = std::min<PetscInt>(options.initial_nev, n);
       if (symmetric)
-        {
-          // Sylvester inertia: exactly this many eigenvalues lie below
-          // w_1^2, so one solve asks for all of them and two more
-          const unsigned int count =
-            count_eigenvalues_below(K, M, {w_1 * w_1})[0];
-          nev = std::min<PetscInt>(n, count + 2);
-        }
+        return symmetric_undamped(
+          M, K, options, sigma, options.f_max * factor, pcout);
+      PetscInt nev = std::min<PetscInt>(options.initial_nev, n);
       for (unsigned int attempt = 0;; ++attempt)
         {
           EPS eps;
           check(EPSCreate(M.get_mpi_communicator(), &eps), "EPSCreate");
           check(EPSSetOperators(eps, K, M), "EPSSetOperators");
-          check(EPSSetProblemType(eps, symmetric ? EPS_GHEP : EPS_GNHEP),
-                "EPSSetProblemType");
+          check(EPSSetProblemType(eps, EPS_GNHEP), "EPSSetProblemType");
           check(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
           check(EPSSetTarget(eps, sigma), "EPSSetTarget");
           check(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE),
                 "EPSSetWhichEigenpairs");
           ST st;
           check(EPSGetST(eps, &st), "EPSGetST");
-          void *const ksp = internal::shift_invert_with_mumps(st, symmetric);
-          // symmetric: the modes kept are purified below in one block
-          // solve; SLEPc's purification is one solve per converged vector
-          if (symmetric)
-            check(EPSSetPurify(eps, PETSC_FALSE), "EPSSetPurify");
+          internal::shift_invert_with_mumps(st, false);
           check(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT),
                 "EPSSetDimensions");
           check(EPSSetTolerances(eps, options.tolerance, 2000),
@@ -99,45 +178,13 @@ namespace squeal
               farthest = std::max(farthest, std::hypot(kr - sigma, ki));
               if (kr <= w_1 * w_1 && ki >= 0)
                 {
-                  // a symmetric pencil's modes are real: no imaginary part
-                  UndampedMode m{{kr, ki}, xr, symmetric ? PETScVector() : xi};
-                  if (ki == 0 && !symmetric)
+                  UndampedMode m{{kr, ki}, xr, xi};
+                  if (ki == 0)
                     m.im = 0;
                   modes.push_back(std::move(m));
                 }
             }
           const bool covered = farthest >= needed || nconv >= n;
-          if (symmetric && !modes.empty() && covered)
-            {
-              // the Krylov basis (about 2 nev vectors) is not needed any
-              // more; the factorisation stays for the step below
-              BV bv;
-              check(EPSGetBV(eps, &bv), "EPSGetBV");
-              check(BVResize(bv, 1, PETSC_FALSE), "BVResize");
-              // one step of inverse iteration for all of them, x <-
-              // (K - sigma M)^-1 M x (it removes what the Krylov basis
-              // left along the other eigenvectors, as SLEPc's purification
-              // does), then unit M-norm; 64 modes at a time (three blocks
-              // of them in memory)
-              const IndexSet        owned = M.locally_owned_range_indices();
-              constexpr std::size_t width = 64;
-              for (std::size_t j0 = 0; j0 < modes.size(); j0 += width)
-                {
-                  const std::size_t w = std::min(width, modes.size() - j0);
-                  Eigen::MatrixXd   X(owned.n_elements(), w);
-                  for (std::size_t j = 0; j < w; ++j)
-                    X.col(j) = internal::local_part(modes[j0 + j].re, owned);
-                  X = internal::solve_block(ksp, K, internal::multiply(M, X));
-                  Eigen::MatrixXd norms =
-                    X.cwiseProduct(internal::multiply(M, X)).colwise().sum();
-                  internal::sum_over_ranks(norms, M.get_mpi_communicator());
-                  for (std::size_t j = 0; j < w; ++j)
-                    {
-                      X.col(j) /= std::sqrt(norms(0, j));
-                      internal::set_local_part(modes[j0 + j].re, X.col(j));
-                    }
-                }
-            }
           EPSDestroy(&eps);
           if (covered)
             {

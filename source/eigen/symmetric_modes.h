@@ -1,7 +1,9 @@
-// The modes of the symmetric problem (K_s, M) below the full solver's basis
-// frequency, by SLEPc (shift-and-invert Krylov-Schur) or PARPACK, each with
-// a factorisation of K_s - sigma M that the full solver reuses for its
-// corrections (see full_solver.h). Included by full_solver.cc only.
+// The modes of the symmetric problem (K_s, M) below a frequency, by SLEPc
+// (shift-and-invert Krylov-Schur), PARPACK or squeal's block Lanczos, each
+// with a factorisation of K_s - sigma M that the caller reuses (the full
+// solver for its corrections, see full_solver.h; solve_undamped() for its
+// purification). Included by full_solver.cc, qep_solver.cc and
+// block_lanczos.cc only.
 
 #ifndef squeal_eigen_symmetric_modes_h
 #define squeal_eigen_symmetric_modes_h
@@ -218,6 +220,51 @@ namespace squeal
 
       private:
         const PETScMatrix            &K;
+        const double                  sigma, tolerance;
+        PETScMatrix                   P;
+        std::unique_ptr<DirectSolver> factorisation;
+      };
+
+      // The same by thick-restart block Lanczos on the shift-and-invert
+      // operator OP = (K - sigma M)^-1 M in the M inner product, the
+      // factorisation a DirectSolver (MUMPS Cholesky): each step applies
+      // OP to a block of up to 64 vectors with one KSPMatSolve, a single
+      // pass through the factors (out of core, read from disk once per
+      // block where Krylov-Schur and PARPACK read them once per vector).
+      // Full block reorthogonalisation (block classical Gram-Schmidt
+      // twice, then Cholesky QR twice), restarts keeping the wanted Ritz
+      // vectors and one block more (Krylov-Schur restarts, Stewart, SIAM
+      // J. Matrix Anal. Appl. 23 (2001), in their block form), Ritz pairs
+      // converged when ||OP x - theta x||_M <= tolerance theta. The basis
+      // holds at most max(2 wanted + 2 b, wanted + 3 b) vectors (b the
+      // block size). In block_lanczos.cc.
+      class BlockModes
+      {
+      public:
+        BlockModes(const PETScMatrix &K,
+                   const PETScMatrix &M,
+                   const double       sigma,
+                   const double       tolerance);
+
+        // The eigenpairs with omega^2 below @p top, M-orthonormal, sorted;
+        // @p wanted of them exist (the inertia count).
+        // @throws std::runtime_error if they do not converge in 100
+        // restarts.
+        std::vector<UndampedMode>
+        solve(const PETScMatrix &M,
+              const unsigned int wanted,
+              const double       top);
+
+        void *
+        solver() const
+        {
+          return factorisation->handle();
+        }
+
+        // of the last solve: block size, block solves, restarts
+        unsigned int block_size = 0, block_solves = 0, restarts = 0;
+
+      private:
         const double                  sigma, tolerance;
         PETScMatrix                   P;
         std::unique_ptr<DirectSolver> factorisation;

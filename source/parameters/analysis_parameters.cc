@@ -399,16 +399,19 @@ namespace squeal
                         "certified (the reduced solver's error in "
                         "Re(lambda) is below 0.2 1/s on the TriboBrake, "
                         "benchmarks/cea_tribobrake).");
-      prm.declare_entry("Symmetric eigensolver",
-                        symmetric_solver,
-                        Patterns::Selection("slepc|arpack"),
-                        "The full solver's eigensolver for the modes of the "
-                        "symmetric problem (the basis whose size the inertia "
-                        "count fixes): slepc (Krylov-Schur) or arpack "
-                        "(PARPACK's implicitly restarted Lanczos through "
-                        "deal.II), both shift-and-invert with a MUMPS "
-                        "Cholesky factorisation; the results agree "
-                        "(cea_tribobrake_coarse).");
+      prm.declare_entry(
+        "Symmetric eigensolver",
+        symmetric_solver,
+        Patterns::Selection("slepc|arpack|block"),
+        "The eigensolver for the modes of the symmetric problem (the full "
+        "solver's basis and each reduced-basis sample, as many as the "
+        "inertia count gives), each on a MUMPS Cholesky factorisation of "
+        "K - sigma M: slepc (SLEPc's Krylov-Schur, shift-and-invert), "
+        "arpack (PARPACK's implicitly restarted Lanczos through deal.II) or "
+        "block (squeal's thick-restart block Lanczos: one solve with a "
+        "block of up to 64 vectors per step, one pass through the factors "
+        "where the others make one per vector; for factors out of core). "
+        "The results agree (cea_tribobrake_coarse).");
       prm.declare_entry(
         "Subspace products",
         subspace_products,

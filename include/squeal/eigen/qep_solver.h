@@ -7,14 +7,16 @@
  *
  * solve_undamped() finds every mode of K phi = omega^2 M phi up to a
  * frequency: one real shift sigma = -(2 pi f_t)^2 (f_t small, default
- * 100 Hz) with shift-and-invert (MUMPS Cholesky of K - sigma M for a
+ * 100 Hz) with a MUMPS factorisation of K - sigma M (Cholesky for a
  * symmetric pencil, LU otherwise). A symmetric pencil's modes below the
- * frequency are counted first by Sylvester inertia and asked for at once;
- * otherwise more eigenvalues are asked for until the farthest converged
- * one lies beyond the wanted frequency. The reduced basis (reduced_model.h)
- * uses it on the symmetric problem. The full solver of the damped quadratic
- * problem, with its inertia count, is in full_solver.h. A negative shift keeps
- * K - sigma M regular when K is singular (a free rigid-body motion).
+ * frequency are counted first by Sylvester inertia and asked for at once
+ * from the eigensolver that BandOptions::symmetric_solver names;
+ * otherwise shift-and-invert Krylov-Schur is asked for more eigenvalues
+ * until the farthest converged one lies beyond the wanted frequency. The
+ * reduced basis (reduced_model.h) uses it on the symmetric problem. The full
+ * solver of the damped quadratic problem, with its inertia count, is in
+ * full_solver.h. A negative shift keeps K - sigma M regular when K is singular
+ * (a free rigid-body motion).
  */
 
 #include <deal.II/base/conditional_ostream.h>
@@ -48,10 +50,14 @@ namespace squeal
       double basis_factor = 1.5;
       /// Refinement rounds of the full solver before it gives up.
       unsigned int max_rounds = 20;
-      /// The full solver's symmetric eigensolver: `slepc` (Krylov-Schur)
-      /// or `arpack` (PARPACK's implicitly restarted Lanczos through
-      /// deal.II's PArpackSolver), both shift-and-invert with MUMPS
-      /// Cholesky.
+      /// The eigensolver of the symmetric problem (the full solver's basis
+      /// and solve_undamped() of a symmetric pencil), each on a MUMPS
+      /// Cholesky (LDL^T) factorisation of K - sigma M: `slepc`
+      /// (Krylov-Schur), `arpack` (PARPACK's implicitly restarted Lanczos
+      /// through deal.II's PArpackSolver), both shift-and-invert, or
+      /// `block` (thick-restart block Lanczos on the shift-and-invert
+      /// operator, blocks of up to 64 vectors, one pass through the
+      /// factors per block: for factors out of core).
       std::string symmetric_solver = "slepc";
       /// The full solver keeps the products M V, C V, K V of its subspace
       /// V (true: four n x r blocks, no sparse product to test a Ritz
@@ -84,13 +90,16 @@ namespace squeal
     /**
      * Every eigenpair of K phi = omega^2 M phi with Re omega^2 below
      * (factor f_max 2 pi)^2, sorted by Re omega^2 (rigid modes included).
-     * SLEPc EPS Krylov-Schur, shift-and-invert at -(2 pi f_t)^2 with MUMPS;
-     * GHEP when @p symmetric (then phi is M-normalised; the number of modes
-     * is counted by count_eigenvalues_below() first and
-     * BandOptions::initial_nev is not used), GNHEP otherwise.
-     * Of a complex pair only the member with Im omega^2 > 0 is returned.
-     * Matrices n x n, M in kg, K in N/m.
-     * @throws std::runtime_error if SLEPc fails or cannot cover the band.
+     * When @p symmetric: GHEP, exactly as many modes as
+     * count_eigenvalues_below() gives, by BandOptions::symmetric_solver
+     * (shift-and-invert or preconditioned at sigma = -(2 pi f_t)^2 with a
+     * MUMPS Cholesky factorisation; BandOptions::initial_nev is not used),
+     * each purified by one step of inverse iteration and M-normalised.
+     * Otherwise GNHEP by SLEPc's Krylov-Schur, shift-and-invert with MUMPS
+     * LU; of a complex pair only the member with Im omega^2 > 0 is
+     * returned. Matrices n x n, M in kg, K in N/m.
+     * @throws std::runtime_error if SLEPc or PARPACK fails, returns fewer
+     * or more modes than the inertia count, or cannot cover the band.
      */
     std::vector<UndampedMode>
     solve_undamped(const PETScMatrix          &M,

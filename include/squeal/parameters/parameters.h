@@ -266,7 +266,8 @@ namespace squeal
       double certification_margin = 1.;
       /// least MAC of a link between the modes of consecutive points
       double tracking_mac_threshold = 0.3;
-      /// the full solver's symmetric eigensolver: `slepc` or `arpack`
+      /// the symmetric eigensolver of the full solver and the reduced
+      /// basis: `slepc`, `arpack` or `block` (eigen::BandOptions)
       std::string symmetric_solver = "slepc";
       /// the full solver's subspace products: `stored` or `recomputed`
       std::string subspace_products = "stored";
