@@ -11,6 +11,7 @@
 #include "symmetric_modes.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -160,6 +161,7 @@ namespace squeal
                         const double       top)
       {
         block_solves = restarts = 0;
+        seconds_solves          = 0.;
         if (wanted == 0)
           return {};
         const dealii::IndexSet owned = M.locally_owned_range_indices();

@@ -16,7 +16,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -79,9 +81,12 @@ namespace squeal
                                                            options.tolerance);
             modes = block->solve(M, count, top);
             ksp   = block->solver();
-            how   = ": " + std::to_string(block->block_solves) +
-                  " block solves of " + std::to_string(block->block_size) +
-                  " vectors, " + std::to_string(block->restarts) + " restarts";
+            std::ostringstream text;
+            text << ": " << block->block_solves << " block solves of "
+                 << block->block_size << " vectors in " << std::setprecision(3)
+                 << block->seconds_solves << " s, " << block->restarts
+                 << " restarts";
+            how = text.str();
           }
         else
           {

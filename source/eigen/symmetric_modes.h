@@ -261,8 +261,10 @@ namespace squeal
           return factorisation->handle();
         }
 
-        // of the last solve: block size, block solves, restarts
+        // of the last solve: block size, block solves, restarts, seconds
+        // in the block solves (the rest: orthogonalisation, restarts)
         unsigned int block_size = 0, block_solves = 0, restarts = 0;
+        double       seconds_solves = 0.;
 
       private:
         const double                  sigma, tolerance;
