@@ -71,6 +71,12 @@ namespace squeal
       switch_out_of_core(mode == "out of core");
   }
 
+  bool
+  factors_out_of_core()
+  {
+    return out_of_core;
+  }
+
   double
   available_memory_mb(MPI_Comm comm)
   {

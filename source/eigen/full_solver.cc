@@ -225,12 +225,14 @@ namespace squeal
       std::unique_ptr<ArpackModes>    arpack;
       std::unique_ptr<BlockModes>     block;
       std::vector<UndampedMode>       modes;
-      if (band.symmetric_solver == "arpack")
+      const std::string               solver =
+        internal::symmetric_solver_for(band.symmetric_solver);
+      if (solver == "arpack")
         {
           arpack = std::make_unique<ArpackModes>(K_s, M, sigma, band.tolerance);
           modes  = arpack->solve(M, r.symmetric_in_basis, top);
         }
-      else if (band.symmetric_solver == "block")
+      else if (solver == "block")
         {
           block = std::make_unique<BlockModes>(K_s, M, sigma, band.tolerance);
           modes = block->solve(M, r.symmetric_in_basis, top);
@@ -379,10 +381,9 @@ namespace squeal
             << r.seconds_projected << " s projected eigenproblems, "
             << r.seconds_residuals << " s residuals, " << r.seconds_solves
             << " s block solves, " << r.seconds_growth << " s subspace growth; "
-            << band.symmetric_solver
-            << " for the symmetric modes); peak memory " << r.peak_memory_mb
-            << " MB (" << 1024. * r.peak_memory_mb / M.m() << " kB per DoF)"
-            << std::endl;
+            << solver << " for the symmetric modes); peak memory "
+            << r.peak_memory_mb << " MB (" << 1024. * r.peak_memory_mb / M.m()
+            << " kB per DoF)" << std::endl;
       if (report)
         *report = r;
       return result;

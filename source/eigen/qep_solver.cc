@@ -64,7 +64,9 @@ namespace squeal
         std::vector<UndampedMode>                 modes;
         void                                     *ksp = nullptr;
         std::string                               how;
-        if (options.symmetric_solver == "arpack")
+        const std::string                         solver =
+          internal::symmetric_solver_for(options.symmetric_solver);
+        if (solver == "arpack")
           {
             arpack = std::make_unique<internal::ArpackModes>(K,
                                                              M,
@@ -73,7 +75,7 @@ namespace squeal
             modes  = arpack->solve(M, count, top);
             ksp    = arpack->solver();
           }
-        else if (options.symmetric_solver == "block")
+        else if (solver == "block")
           {
             block = std::make_unique<internal::BlockModes>(K,
                                                            M,
@@ -99,8 +101,7 @@ namespace squeal
             ksp = slepc->solver();
           }
         if (modes.size() != count)
-          throw std::runtime_error("undamped eigensolver (" +
-                                   options.symmetric_solver +
+          throw std::runtime_error("undamped eigensolver (" + solver +
                                    "): " + std::to_string(modes.size()) +
                                    " modes below " + std::to_string(f_top) +
                                    " Hz where the Sylvester inertia count "
@@ -129,8 +130,8 @@ namespace squeal
               }
           }
         pcout << "  undamped eigensolver: " << modes.size() << " modes up to "
-              << f_top << " Hz, as many as the inertia count ("
-              << options.symmetric_solver << how << ")" << std::endl;
+              << f_top << " Hz, as many as the inertia count (" << solver << how
+              << ")" << std::endl;
         return modes;
       }
     } // namespace

@@ -11,6 +11,7 @@
 #include <deal.II/lac/parpack_solver.h>
 #include <deal.II/lac/solver_control.h>
 
+#include <squeal/base/memory_estimate.h>
 #include <squeal/eigen/qep_solver.h>
 
 #include <slepceps.h>
@@ -30,6 +31,17 @@ namespace squeal
   {
     namespace internal
     {
+      // The symmetric eigensolver that BandOptions::symmetric_solver
+      // names; `auto`: block Lanczos when MUMPS's factors are out of core
+      // (one pass through them per block), Krylov-Schur otherwise
+      inline std::string
+      symmetric_solver_for(const std::string &choice)
+      {
+        if (choice != "auto")
+          return choice;
+        return factors_out_of_core() ? "block" : "slepc";
+      }
+
       inline void
       check_eps(const PetscErrorCode ierr, const char *what)
       {

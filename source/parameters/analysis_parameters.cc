@@ -402,11 +402,13 @@ namespace squeal
       prm.declare_entry(
         "Symmetric eigensolver",
         symmetric_solver,
-        Patterns::Selection("slepc|arpack|block"),
+        Patterns::Selection("auto|slepc|arpack|block"),
         "The eigensolver for the modes of the symmetric problem (the full "
         "solver's basis and each reduced-basis sample, as many as the "
         "inertia count gives), each on a MUMPS Cholesky factorisation of "
-        "K - sigma M: slepc (SLEPc's Krylov-Schur, shift-and-invert), "
+        "K - sigma M: auto (block when MUMPS's factors are out of core, "
+        "Linear solver/Out-of-core factorisation, slepc otherwise), "
+        "slepc (SLEPc's Krylov-Schur, shift-and-invert), "
         "arpack (PARPACK's implicitly restarted Lanczos through deal.II) or "
         "block (squeal's thick-restart block Lanczos: one solve with a "
         "block of up to 64 vectors per step, one pass through the factors "

@@ -102,7 +102,7 @@ worst = same_eigenvalues("mpirun -np 2", lifted2, lifted, 1e-8)
 print(f"mpirun -np 2: the serial eigenvalues ({worst:.1e}): ok")
 
 # Out of core: MUMPS's factors (the preload's LU, the full solver's LDL^T
-# and shift-and-invert) written to files in Linear solver/Out-of-core
+# and block Lanczos's Cholesky) written to files in Linear solver/Out-of-core
 # directory, which the run lists while it runs, and the in-core eigenvalues.
 ooc = os.path.abspath("factors")
 shutil.rmtree(ooc, ignore_errors=True)
@@ -122,6 +122,11 @@ if r3.returncode != 0:
     fail(f"out of core: exit {r3.returncode}\n{r3.stdout}\n{r3.stderr}")
 if "MUMPS's factors out of core" not in r3.stdout:
     fail("out of core: the memory estimate does not say so")
+# Symmetric eigensolver = auto: block Lanczos (one pass through the factor
+# files per block of vectors)
+if "; block for the symmetric modes" not in r3.stdout:
+    fail("out of core: the full solver did not take block Lanczos for the "
+         "symmetric modes (Symmetric eigensolver = auto)")
 factor_files = sorted(f for f in seen if f.startswith("mumps_"))
 if not factor_files:
     fail(f"out of core: no MUMPS factor file appeared in {ooc} ({sorted(seen)})")

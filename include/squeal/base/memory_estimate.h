@@ -52,6 +52,14 @@ namespace squeal
   set_factor_storage(const std::string &mode, const std::string &directory);
 
   /**
+   * Whether MUMPS's factorisations keep their factors out of core from now
+   * on (set_factor_storage(), or report_memory_estimate() under `auto`).
+   * Throws nothing.
+   */
+  bool
+  factors_out_of_core();
+
+  /**
    * The memory available to new allocations on the nodes of @p comm [MB]:
    * /proc/meminfo's MemAvailable of each node, counted once per node (by
    * its first rank in @p comm), summed. Collective.

@@ -267,8 +267,8 @@ namespace squeal
       /// least MAC of a link between the modes of consecutive points
       double tracking_mac_threshold = 0.3;
       /// the symmetric eigensolver of the full solver and the reduced
-      /// basis: `slepc`, `arpack` or `block` (eigen::BandOptions)
-      std::string symmetric_solver = "slepc";
+      /// basis: `auto`, `slepc`, `arpack` or `block` (eigen::BandOptions)
+      std::string symmetric_solver = "auto";
       /// the full solver's subspace products: `stored` or `recomputed`
       std::string subspace_products = "stored";
       /// Sample values per swept structural parameter for the reduced basis.
