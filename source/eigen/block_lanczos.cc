@@ -5,6 +5,8 @@
 
 #include <deal.II/base/index_set.h>
 
+#include <petscksp.h>
+
 #include <Eigen/Dense>
 
 #include "dense_block.h"
@@ -181,8 +183,24 @@ namespace squeal
         const Eigen::Index keep      = std::min(c + b, largest - b);
         const double       theta_top = 1. / (top - sigma);
         block_size                   = b;
-        std::uint64_t   seed         = 1;
-        void *const     ksp          = factorisation->handle();
+        // MUMPS treats the right-hand sides in blocks of ICNTL(27) (32 by
+        // default): one block per step means one forward and one backward
+        // pass through the factors (out of core: read from disk twice)
+        {
+          PC  pc;
+          Mat F;
+          check_petsc(KSPGetPC(static_cast<KSP>(factorisation->handle()), &pc),
+                      "block Lanczos",
+                      "KSPGetPC");
+          check_petsc(PCFactorGetMatrix(pc, &F),
+                      "block Lanczos",
+                      "PCFactorGetMatrix");
+          check_petsc(MatMumpsSetIcntl(F, 27, b),
+                      "block Lanczos",
+                      "MatMumpsSetIcntl");
+        }
+        std::uint64_t   seed = 1;
+        void *const     ksp  = factorisation->handle();
         Eigen::MatrixXd V(n, 0), next(n, b);
         for (Eigen::Index j = 0; j < b; ++j)
           fill_start(next.col(j), owned, seed++);
@@ -199,8 +217,12 @@ namespace squeal
                 T.conservativeResize(k + b, k + b);
                 T.bottomLeftCorner(b, k) = F;
                 T.topRightCorner(k, b)   = F.transpose();
+                const auto      start    = std::chrono::steady_clock::now();
                 Eigen::MatrixXd W = solve_block(ksp, P, multiply(M, next));
                 ++block_solves;
+                seconds_solves += std::chrono::duration<double>(
+                                    std::chrono::steady_clock::now() - start)
+                                    .count();
                 const double          reference = largest_m_norm(M, W);
                 const Eigen::MatrixXd H         = orthogonalise(M, V, W);
                 const Eigen::MatrixXd D         = H.bottomRows(b);
