@@ -31,15 +31,12 @@ namespace squeal
   namespace eigen
   {
     using namespace dealii;
-    using internal::ArpackModes;
-    using internal::BlockModes;
     using internal::multiply;
     using internal::PointMatrices;
     using internal::residuals;
     using internal::ritz_pairs;
     using internal::Subspace;
     using internal::sum_over_ranks;
-    using internal::SymmetricModes;
 
     namespace
     {
@@ -220,32 +217,12 @@ namespace squeal
             factor);
         }
 
-      const double                    t_count = seconds_since(start);
-      std::unique_ptr<SymmetricModes> slepc;
-      std::unique_ptr<ArpackModes>    arpack;
-      std::unique_ptr<BlockModes>     block;
-      std::vector<UndampedMode>       modes;
-      const std::string               solver =
-        internal::symmetric_solver_for(band.symmetric_solver);
-      if (solver == "arpack")
-        {
-          arpack = std::make_unique<ArpackModes>(K_s, M, sigma, band.tolerance);
-          modes  = arpack->solve(M, r.symmetric_in_basis, top);
-        }
-      else if (solver == "block")
-        {
-          block = std::make_unique<BlockModes>(K_s, M, sigma, band.tolerance);
-          modes = block->solve(M, r.symmetric_in_basis, top);
-        }
-      else
-        {
-          slepc =
-            std::make_unique<SymmetricModes>(K_s, M, sigma, band.tolerance);
-          modes = slepc->solve(M, r.symmetric_in_basis, top);
-        }
-      void *const factorised        = arpack ? arpack->solver() :
-                                      block  ? block->solver() :
-                                               slepc->solver();
+      const double                   t_count = seconds_since(start);
+      internal::SymmetricEigensolver eigensolver(
+        K_s, M, sigma, band.tolerance, band.symmetric_solver);
+      std::vector<UndampedMode> modes =
+        eigensolver.solve(M, r.symmetric_in_basis, top);
+      void *const factorised        = eigensolver.solver();
       const auto  not_semi_definite = [&]() {
         return "the stiffness without friction is not positive "
                 "semi-definite (an eigenvalue below -(2 pi " +
@@ -273,7 +250,7 @@ namespace squeal
           Phi.col(j) = internal::local_part(modes[j].re, owned);
           omega2[j]  = modes[j].omega2.real();
         }
-      if (slepc)
+      if (eigensolver.krylov_schur())
         {
           // SLEPc's eigenvector purification, for all of them in one block:
           // a step of inverse iteration x <- (K_s - sigma M)^-1 M x removes
@@ -281,7 +258,8 @@ namespace squeal
           // close doublets of a disc need it); it scales an eigenvector by
           // 1 / (omega^2 - sigma), undone here (append() below
           // M-orthonormalises them)
-          Phi = internal::solve_block(slepc->solver(), K_s, multiply(M, Phi));
+          Phi =
+            internal::solve_block(eigensolver.solver(), K_s, multiply(M, Phi));
           Phi *= (omega2.array() - sigma).matrix().asDiagonal();
         }
       // the modes live on in Phi (and in the caller's copy); the
@@ -295,8 +273,7 @@ namespace squeal
         }
       modes.clear();
       modes.shrink_to_fit();
-      if (slepc)
-        slepc->release_basis();
+      eigensolver.release_basis();
       Subspace s(A, band.store_products);
       s.append(std::move(Phi), true);
       s.fix_modal_damping(K_s, model.modal);
@@ -381,7 +358,7 @@ namespace squeal
             << r.seconds_projected << " s projected eigenproblems, "
             << r.seconds_residuals << " s residuals, " << r.seconds_solves
             << " s block solves, " << r.seconds_growth << " s subspace growth; "
-            << solver << " for the symmetric modes); peak memory "
+            << eigensolver.name << " for the symmetric modes); peak memory "
             << r.peak_memory_mb << " MB (" << 1024. * r.peak_memory_mb / M.m()
             << " kB per DoF)" << std::endl;
       if (report)

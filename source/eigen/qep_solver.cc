@@ -16,9 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -58,48 +56,14 @@ namespace squeal
         const double       w_1   = 2. * numbers::PI * f_top;
         const double       top   = w_1 * w_1;
         const unsigned int count = count_eigenvalues_below(K, M, {top})[0];
-        std::unique_ptr<internal::SymmetricModes> slepc;
-        std::unique_ptr<internal::ArpackModes>    arpack;
-        std::unique_ptr<internal::BlockModes>     block;
-        std::vector<UndampedMode>                 modes;
-        void                                     *ksp = nullptr;
-        std::string                               how;
-        const std::string                         solver =
-          internal::symmetric_solver_for(options.symmetric_solver);
-        if (solver == "arpack")
-          {
-            arpack = std::make_unique<internal::ArpackModes>(K,
-                                                             M,
-                                                             sigma,
-                                                             options.tolerance);
-            modes  = arpack->solve(M, count, top);
-            ksp    = arpack->solver();
-          }
-        else if (solver == "block")
-          {
-            block = std::make_unique<internal::BlockModes>(K,
-                                                           M,
-                                                           sigma,
-                                                           options.tolerance);
-            modes = block->solve(M, count, top);
-            ksp   = block->solver();
-            std::ostringstream text;
-            text << ": " << block->block_solves << " block solves of "
-                 << block->block_size << " vectors in " << std::setprecision(3)
-                 << block->seconds_solves << " s, " << block->restarts
-                 << " restarts";
-            how = text.str();
-          }
-        else
-          {
-            slepc = std::make_unique<internal::SymmetricModes>(
-              K, M, sigma, options.tolerance);
-            modes = slepc->solve(M, count, top);
-            // the eigensolver's vectors are not needed any more; the
-            // factorisation stays for the purification
-            slepc->release_basis();
-            ksp = slepc->solver();
-          }
+        internal::SymmetricEigensolver eigensolver(
+          K, M, sigma, options.tolerance, options.symmetric_solver);
+        std::vector<UndampedMode> modes = eigensolver.solve(M, count, top);
+        // the eigensolver's vectors are not needed any more; the
+        // factorisation stays for the purification
+        eigensolver.release_basis();
+        void *const       ksp    = eigensolver.solver();
+        const std::string solver = eigensolver.name;
         if (modes.size() != count)
           throw std::runtime_error("undamped eigensolver (" + solver +
                                    "): " + std::to_string(modes.size()) +
@@ -130,8 +94,8 @@ namespace squeal
               }
           }
         pcout << "  undamped eigensolver: " << modes.size() << " modes up to "
-              << f_top << " Hz, as many as the inertia count (" << solver << how
-              << ")" << std::endl;
+              << f_top << " Hz, as many as the inertia count ("
+              << eigensolver.summary() << ")" << std::endl;
         return modes;
       }
     } // namespace

@@ -20,7 +20,9 @@
 
 #include <algorithm>
 #include <complex>
+#include <iomanip>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -282,6 +284,82 @@ namespace squeal
         const double                  sigma, tolerance;
         PETScMatrix                   P;
         std::unique_ptr<DirectSolver> factorisation;
+      };
+
+      // The eigensolver that BandOptions::symmetric_solver names
+      // (symmetric_solver_for()), one of the three above, with its
+      // factorisation of K - sigma M.
+      class SymmetricEigensolver
+      {
+      public:
+        SymmetricEigensolver(const PETScMatrix &K,
+                             const PETScMatrix &M,
+                             const double       sigma,
+                             const double       tolerance,
+                             const std::string &choice)
+          : name(symmetric_solver_for(choice))
+        {
+          if (name == "arpack")
+            arpack = std::make_unique<ArpackModes>(K, M, sigma, tolerance);
+          else if (name == "block")
+            block = std::make_unique<BlockModes>(K, M, sigma, tolerance);
+          else
+            slepc = std::make_unique<SymmetricModes>(K, M, sigma, tolerance);
+        }
+
+        // see SymmetricModes::solve()
+        std::vector<UndampedMode>
+        solve(const PETScMatrix &M, const unsigned int wanted, const double top)
+        {
+          return arpack ? arpack->solve(M, wanted, top) :
+                 block  ? block->solve(M, wanted, top) :
+                          slepc->solve(M, wanted, top);
+        }
+
+        // the factorised K - sigma M
+        void *
+        solver() const
+        {
+          return arpack ? arpack->solver() :
+                 block  ? block->solver() :
+                          slepc->solver();
+        }
+
+        // Krylov-Schur's eigenvectors want a purification step
+        bool
+        krylov_schur() const
+        {
+          return slepc != nullptr;
+        }
+
+        // frees Krylov-Schur's basis (the factorisation stays)
+        void
+        release_basis()
+        {
+          if (slepc)
+            slepc->release_basis();
+        }
+
+        // the name, and block Lanczos's counts and time of its last solve
+        std::string
+        summary() const
+        {
+          if (!block)
+            return name;
+          std::ostringstream text;
+          text << name << ": " << block->block_solves << " block solves of "
+               << block->block_size << " vectors in " << std::setprecision(3)
+               << block->seconds_solves << " s, " << block->restarts
+               << " restarts";
+          return text.str();
+        }
+
+        const std::string name;
+
+      private:
+        std::unique_ptr<SymmetricModes> slepc;
+        std::unique_ptr<ArpackModes>    arpack;
+        std::unique_ptr<BlockModes>     block;
       };
     } // namespace internal
   }   // namespace eigen
