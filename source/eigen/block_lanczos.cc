@@ -150,12 +150,8 @@ namespace squeal
                              const double       tolerance)
         : sigma(sigma)
         , tolerance(tolerance)
-      {
-        P.reinit(K);
-        P.copy_from(K);
-        add_scaled(P, -sigma, M);
-        factorisation = std::make_unique<DirectSolver>(P, true);
-      }
+        , shifted(K, M, sigma)
+      {}
 
       std::vector<UndampedMode>
       BlockModes::solve(const PETScMatrix &M,
@@ -189,7 +185,7 @@ namespace squeal
         {
           PC  pc;
           Mat F;
-          check_petsc(KSPGetPC(static_cast<KSP>(factorisation->handle()), &pc),
+          check_petsc(KSPGetPC(static_cast<KSP>(shifted.solver->handle()), &pc),
                       "block Lanczos",
                       "KSPGetPC");
           check_petsc(PCFactorGetMatrix(pc, &F),
@@ -200,7 +196,7 @@ namespace squeal
                       "MatMumpsSetIcntl");
         }
         std::uint64_t   seed = 1;
-        void *const     ksp  = factorisation->handle();
+        void *const     ksp  = shifted.solver->handle();
         Eigen::MatrixXd V(n, 0), next(n, b);
         for (Eigen::Index j = 0; j < b; ++j)
           fill_start(next.col(j), owned, seed++);
@@ -218,7 +214,8 @@ namespace squeal
                 T.bottomLeftCorner(b, k) = F;
                 T.topRightCorner(k, b)   = F.transpose();
                 const auto      start    = std::chrono::steady_clock::now();
-                Eigen::MatrixXd W = solve_block(ksp, P, multiply(M, next));
+                Eigen::MatrixXd W =
+                  solve_block(ksp, shifted.P, multiply(M, next));
                 ++block_solves;
                 seconds_solves += std::chrono::duration<double>(
                                     std::chrono::steady_clock::now() - start)

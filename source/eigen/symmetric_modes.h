@@ -153,6 +153,23 @@ namespace squeal
         KSP ksp;
       };
 
+      // K - sigma M and its MUMPS Cholesky (LDL^T) factorisation
+      struct ShiftedCholesky
+      {
+        ShiftedCholesky(const PETScMatrix &K,
+                        const PETScMatrix &M,
+                        const double       sigma)
+        {
+          P.reinit(K);
+          P.copy_from(K);
+          add_scaled(P, -sigma, M);
+          solver = std::make_unique<DirectSolver>(P, true);
+        }
+
+        PETScMatrix                   P;
+        std::unique_ptr<DirectSolver> solver;
+      };
+
       // The same with PARPACK (implicitly restarted Lanczos, mode 3:
       // shift-and-invert of the symmetric pencil) through deal.II's
       // PArpackSolver, the factorisation a DirectSolver (MUMPS Cholesky).
@@ -166,12 +183,8 @@ namespace squeal
           : K(K)
           , sigma(sigma)
           , tolerance(tolerance)
-        {
-          P.reinit(K);
-          P.copy_from(K);
-          internal::add_scaled(P, -sigma, M);
-          factorisation = std::make_unique<DirectSolver>(P, true);
-        }
+          , shifted(K, M, sigma)
+        {}
 
         std::vector<UndampedMode>
         solve(const PETScMatrix &M, const unsigned int wanted, const double top)
@@ -185,7 +198,7 @@ namespace squeal
             {
               solver.solve(b, x);
             }
-          } inverse{*factorisation};
+          } inverse{*shifted.solver};
           const dealii::IndexSet    owned = M.locally_owned_range_indices();
           const MPI_Comm            comm  = M.get_mpi_communicator();
           std::vector<UndampedMode> modes;
@@ -229,14 +242,13 @@ namespace squeal
         void *
         solver() const
         {
-          return factorisation->handle();
+          return shifted.solver->handle();
         }
 
       private:
-        const PETScMatrix            &K;
-        const double                  sigma, tolerance;
-        PETScMatrix                   P;
-        std::unique_ptr<DirectSolver> factorisation;
+        const PETScMatrix &K;
+        const double       sigma, tolerance;
+        ShiftedCholesky    shifted;
       };
 
       // The same by thick-restart block Lanczos on the shift-and-invert
@@ -272,7 +284,7 @@ namespace squeal
         void *
         solver() const
         {
-          return factorisation->handle();
+          return shifted.solver->handle();
         }
 
         // of the last solve: block size, block solves, restarts, seconds
@@ -281,9 +293,8 @@ namespace squeal
         double       seconds_solves = 0.;
 
       private:
-        const double                  sigma, tolerance;
-        PETScMatrix                   P;
-        std::unique_ptr<DirectSolver> factorisation;
+        const double    sigma, tolerance;
+        ShiftedCholesky shifted;
       };
 
       // The eigensolver that BandOptions::symmetric_solver names
