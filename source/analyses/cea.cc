@@ -114,8 +114,8 @@ namespace squeal
         pcout.is_active() ? &pcout.get_stream() : nullptr,
         model->n_dofs(),
         factor,
-        "an LDL^T of the stiffness; a full solve's subspace comes on top "
-        "(estimated after its inertia count)",
+        "an LDL^T of the stiffness; the eigensolvers' vectors come on top "
+        "(estimated after their inertia counts)",
         factor);
     }
 

@@ -167,10 +167,9 @@ namespace squeal
         const Eigen::Index     N     = M.m();
         const Eigen::Index     n     = owned.n_elements();
         const Eigen::Index     c     = wanted;
-        const Eigen::Index     b     = std::max<Eigen::Index>(
-          1, std::min<Eigen::Index>({64, (c + 2) / 3 + 1, N / 4}));
-        const Eigen::Index largest =
-          std::min<Eigen::Index>(N - b, std::max(2 * c + 2 * b, c + 3 * b));
+        const auto [block, basis]    = block_and_basis(wanted, N);
+        const Eigen::Index b         = block;
+        const Eigen::Index largest   = basis;
         if (largest < c + b)
           throw std::runtime_error(
             "block Lanczos: " + std::to_string(wanted) +

@@ -42,6 +42,36 @@ namespace squeal
         return v;
       }
 
+      // The memory the symmetric eigensolver is about to allocate, printed
+      // before it does: K - sigma M (12 bytes per nonzero in PETSc's AIJ
+      // storage), PETSc's triplets of its upper triangle for MUMPS (8 per
+      // nonzero), the LDL^T (factorisation_bytes()) and the vectors the
+      // eigensolver holds (held_vectors(), 8 bytes per entry); the count
+      // of modes is known from the inertia
+      void
+      report_eigensolver_memory(const PETScMatrix  &M,
+                                const PETScMatrix  &K,
+                                const unsigned int  count,
+                                const std::string  &choice,
+                                ConditionalOStream &pcout)
+      {
+        const double nonzeros = K.n_nonzero_elements();
+        const double factor =
+          factorisation_bytes(K.n_nonzero_elements(), K.m(), true);
+        const std::string name = internal::symmetric_solver_for(choice);
+        const double      vectors =
+          internal::SymmetricEigensolver::held_vectors(name, count, M.m());
+        report_memory_estimate(
+          M.get_mpi_communicator(),
+          pcout.is_active() ? &pcout.get_stream() : nullptr,
+          M.m(),
+          factor + 20. * nonzeros + 8. * vectors * double(M.m()),
+          "the undamped eigensolver (" + name + ", " + std::to_string(count) +
+            " modes): the LDL^T of K - sigma M, its copy and " +
+            std::to_string(int(vectors)) + " vectors",
+          factor);
+      }
+
       // The symmetric pencil's modes below f_top: exactly as many as the
       // Sylvester inertia count gives, by the eigensolver that
       // options.symmetric_solver names, then purified.
@@ -56,6 +86,7 @@ namespace squeal
         const double       w_1   = 2. * numbers::PI * f_top;
         const double       top   = w_1 * w_1;
         const unsigned int count = count_eigenvalues_below(K, M, {top})[0];
+        report_eigensolver_memory(M, K, count, options.symmetric_solver, pcout);
         internal::SymmetricEigensolver eigensolver(
           K, M, sigma, options.tolerance, options.symmetric_solver);
         std::vector<UndampedMode> modes = eigensolver.solve(M, count, top);

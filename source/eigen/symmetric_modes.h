@@ -25,6 +25,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace squeal
@@ -287,6 +288,21 @@ namespace squeal
           return shifted.solver->handle();
         }
 
+        // The block size and the largest basis for @p wanted modes of a
+        // problem of size @p N (solve() uses them; held_vectors() counts
+        // them)
+        static std::pair<std::size_t, std::size_t>
+        block_and_basis(const std::size_t wanted, const std::size_t N)
+        {
+          const std::size_t c = wanted;
+          const std::size_t b = std::max<std::size_t>(
+            1, std::min<std::size_t>({64, (c + 2) / 3 + 1, N / 4}));
+          const std::size_t largest =
+            std::min<std::size_t>(N - std::min(N, b),
+                                  std::max(2 * c + 2 * b, c + 3 * b));
+          return {b, largest};
+        }
+
         // of the last solve: block size, block solves, restarts, seconds
         // in the block solves (the rest: orthogonalisation, restarts)
         unsigned int block_size = 0, block_solves = 0, restarts = 0;
@@ -349,6 +365,29 @@ namespace squeal
         {
           if (slepc)
             slepc->release_basis();
+        }
+
+        // The most vectors of the problem's size that solve() holds at
+        // once for @p wanted modes of a problem of size @p N, the returned
+        // modes included: Krylov-Schur's default basis of max(2 nev, nev +
+        // 15) vectors (nev = wanted + 2), PARPACK's 2 nev + 2 and its nev
+        // eigenvectors and three work vectors, block Lanczos's basis and
+        // four blocks (the next block, its mass product, the operator's
+        // result and its mass product)
+        static double
+        held_vectors(const std::string &name,
+                     const std::size_t  wanted,
+                     const std::size_t  N)
+        {
+          const double nev = std::min<double>(N, wanted + 2);
+          if (name == "arpack")
+            return 2. * nev + 2. + nev + 3. + wanted;
+          if (name == "block")
+            {
+              const auto [b, largest] = BlockModes::block_and_basis(wanted, N);
+              return double(largest) + 4. * b + wanted;
+            }
+          return std::min<double>(N, std::max(2. * nev, nev + 15.)) + wanted;
         }
 
         // the name, and block Lanczos's counts and time of its last solve
