@@ -31,6 +31,9 @@ Runs the program serially and with `mpirun -np 2`, then checks:
   eigenvectors agree to the eigensolver's tolerance and a doublet's pair
   within its plane; the reduced eigenvalues follow such changes of the
   basis at about 3e-7 here, below the reduced model's own error);
+- before each basis sample's undamped eigensolve the run estimates its
+  memory for the inertia count's modes: at least what is in use and
+  within 2x of the run's peak;
 - plot_cea.py makes its three PNG files.
 Exits non-zero on the first failure.
 """
@@ -182,6 +185,30 @@ for g in regions:
     if not hits or max(float(r["re_per_s"]) for r in hits) != float(g["max_re_per_s"]):
         fail(f"region {g} does not match eigenvalues.csv")
 print(f"serial: {len(ev)} eigenvalues, {len(regions)} unstable regions: ok")
+
+# The memory estimate printed before each basis sample's undamped
+# eigensolve: for as many modes as the inertia count then gives the
+# eigensolver, at least what is in use, within 2x of the run's peak.
+lines = log.splitlines()
+estimates = [(i, l.strip()) for i, l in enumerate(lines)
+             if "with the undamped eigensolver (" in l]
+if len(estimates) != 2:  # Reduced samples = 2
+    fail(f"{len(estimates)} eigensolver memory estimates, not one per basis "
+         "sample (2)")
+peak = next(float(l.split()[2]) for l in lines if l.startswith("Peak memory: "))
+for i, line in estimates:
+    use = float(line.split()[1])
+    estimate = float(line.split("estimated peak ")[1].split()[0])
+    count = int(line.split("with the undamped eigensolver (")[1]
+                .split(", ")[1].split()[0])
+    solved = next(l for l in lines[i:] if "undamped eigensolver: " in l)
+    if f": {count} modes up to" not in solved:
+        fail(f"the estimate was for {count} modes, the eigensolver: {solved}")
+    if not (use <= estimate and peak / 2 <= estimate <= 2 * peak):
+        fail(f"eigensolver memory estimate {estimate} MB (in use {use} MB) "
+             f"not within 2x of the peak {peak} MB")
+print(f"eigensolver memory estimates: {len(estimates)}, each for the "
+      f"inertia count's modes, within 2x of the peak {peak:.0f} MB: ok")
 
 parallel = os.path.join(work, "mpirun2")
 run(["mpirun", "-np", "2", squeal], parallel)

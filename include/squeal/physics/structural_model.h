@@ -379,7 +379,16 @@ namespace squeal
        */
       std::function<double(const dealii::Point<3> &)> interface_mask;
 
-      /// the scene's mesh, whole on every rank (refined by the CEA)
+      /**
+       * The scene's mesh, whole on every rank (refined by the CEA), each
+       * rank owning a METIS part. Shared rather than distributed because
+       * it was measured to hold less (benchmarks/scale/README.md, "Which
+       * parallel triangulation"): a mesh file's cells are all coarse
+       * cells, which p4est keeps on every rank too, with twice the
+       * memory; a fully distributed triangulation cannot be refined
+       * (deal.II 9.4); the whole mesh and DoF handler of the
+       * 1.2-million-DoF brake take 35 MB per rank at degree 2.
+       */
       dealii::parallel::shared::Triangulation<3> triangulation;
       /// FE_Q^3 of Mesh/Finite element degree
       const dealii::FESystem<3> fe;
