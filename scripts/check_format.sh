@@ -13,7 +13,7 @@ fi
 # tracked files and new ones git does not ignore
 mapfile -t files < <(git ls-files --cached --others --exclude-standard 'include/*.h' 'source/*.cc' 'source/*.h' \
                                   'tribology/*.cc' 'tribology/*.h' \
-                                  'tests/*.cc' 'tests/*.h')
+                                  'tests/*.cc' 'tests/*.h' 'benchmarks/*.cc')
 if [ "${1:-}" = "--fix" ]; then
   "$format" -i "${files[@]}"
   exit 0

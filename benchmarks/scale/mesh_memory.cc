@@ -79,7 +79,7 @@ namespace
       const std::string &kind,
       const unsigned int refinements)
   {
-    const MPI_Comm                     comm = MPI_COMM_WORLD;
+    const MPI_Comm                    comm = MPI_COMM_WORLD;
     std::unique_ptr<Triangulation<3>> tria;
     if (kind == "shared")
       {
@@ -106,9 +106,11 @@ namespace
             [&file, refinements](Triangulation<3> &serial) {
               read_mesh(serial, file, refinements);
             },
-            [](Triangulation<3> &serial, const MPI_Comm &c, const unsigned int) {
-              GridTools::partition_triangulation(Utilities::MPI::n_mpi_processes(c),
-                                                 serial);
+            [](Triangulation<3> &serial,
+               const MPI_Comm   &c,
+               const unsigned int) {
+              GridTools::partition_triangulation(
+                Utilities::MPI::n_mpi_processes(c), serial);
             },
             comm,
             1);
@@ -172,7 +174,10 @@ main(int argc, char **argv)
       if (argc != 4 && argc != 5)
         throw std::runtime_error(
           "usage: squeal-bench-mesh-memory MSH DEGREE KIND [REFINE]");
-      run(argv[1], std::stoi(argv[2]), argv[3], argc == 5 ? std::stoi(argv[4]) : 0);
+      run(argv[1],
+          std::stoi(argv[2]),
+          argv[3],
+          argc == 5 ? std::stoi(argv[4]) : 0);
     }
   catch (const std::exception &e)
     {
