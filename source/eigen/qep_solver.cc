@@ -58,18 +58,27 @@ namespace squeal
         const double nonzeros = K.n_nonzero_elements();
         const double factor =
           factorisation_bytes(K.n_nonzero_elements(), K.m(), true);
-        const std::string name = internal::symmetric_solver_for(choice);
-        const double      vectors =
-          internal::SymmetricEigensolver::held_vectors(name, count, M.m());
-        report_memory_estimate(
-          M.get_mpi_communicator(),
-          pcout.is_active() ? &pcout.get_stream() : nullptr,
-          M.m(),
-          factor + 20. * nonzeros + 8. * vectors * double(M.m()),
-          "the undamped eigensolver (" + name + ", " + std::to_string(count) +
-            " modes): the LDL^T of K - sigma M, its copy and " +
-            std::to_string(int(vectors)) + " vectors",
-          factor);
+        // once more if this estimate sent the factors out of core (under
+        // `auto` storage), which changes `auto`'s eigensolver
+        for (std::string name = internal::symmetric_solver_for(choice);;)
+          {
+            const double vectors =
+              internal::SymmetricEigensolver::held_vectors(name, count, M.m());
+            report_memory_estimate(
+              M.get_mpi_communicator(),
+              pcout.is_active() ? &pcout.get_stream() : nullptr,
+              M.m(),
+              factor + 20. * nonzeros + 8. * vectors * double(M.m()),
+              "the undamped eigensolver (" + name + ", " +
+                std::to_string(count) +
+                " modes): the LDL^T of K - sigma M, its copy and " +
+                std::to_string(int(vectors)) + " vectors",
+              factor);
+            const std::string now = internal::symmetric_solver_for(choice);
+            if (now == name)
+              return;
+            name = now;
+          }
       }
 
       // The symmetric pencil's modes below f_top: exactly as many as the
