@@ -55,9 +55,8 @@ namespace squeal
                                 const std::string  &choice,
                                 ConditionalOStream &pcout)
       {
-        const double nonzeros = K.n_nonzero_elements();
-        const double factor =
-          factorisation_bytes(K.n_nonzero_elements(), K.m(), true);
+        const std::size_t nonzeros = K.n_nonzero_elements();
+        const double      factor   = factorisation_bytes(nonzeros, K.m(), true);
         // once more if this estimate sent the factors out of core (under
         // `auto` storage), which changes `auto`'s eigensolver
         for (std::string name = internal::symmetric_solver_for(choice);;)
@@ -68,7 +67,7 @@ namespace squeal
               M.get_mpi_communicator(),
               pcout.is_active() ? &pcout.get_stream() : nullptr,
               M.m(),
-              factor + 20. * nonzeros + 8. * vectors * double(M.m()),
+              factor + 20. * double(nonzeros) + 8. * vectors * double(M.m()),
               "the undamped eigensolver (" + name + ", " +
                 std::to_string(count) +
                 " modes): the LDL^T of K - sigma M, its copy and " +
