@@ -519,11 +519,49 @@ namespace squeal
                          physics::PETScVector   &re,
                          physics::PETScVector   &im) const
     {
-      const Eigen::VectorXd xr = V * q.real(), xi = V * q.imag();
+      std::vector<EigenPair> pair;
+      expand({q}, {std::complex<double>()}, pair);
       re.reinit(owned, comm);
       im.reinit(owned, comm);
-      internal::set_local_part(re, xr);
-      internal::set_local_part(im, xi);
+      re = pair[0].re;
+      im = pair[0].im;
+    }
+
+    void
+    ReducedModel::expand(const std::vector<Eigen::VectorXcd>     &q,
+                         const std::vector<std::complex<double>> &lambda,
+                         std::vector<EigenPair>                  &pairs) const
+    {
+      if (lambda.size() != q.size())
+        throw std::logic_error(
+          "ReducedModel::expand: " + std::to_string(q.size()) +
+          " coefficient vectors, " + std::to_string(lambda.size()) +
+          " eigenvalues");
+      // the real and imaginary parts of 16 modes side by side: one
+      // matrix-matrix product with V instead of 32 matrix-vector ones
+      constexpr std::size_t batch = 16;
+      pairs.resize(q.size());
+      Eigen::MatrixXd Q, X;
+      for (std::size_t first = 0; first < q.size(); first += batch)
+        {
+          const std::size_t m = std::min(batch, q.size() - first);
+          Q.resize(V.cols(), 2 * m);
+          for (std::size_t j = 0; j < m; ++j)
+            {
+              Q.col(2 * j)     = q[first + j].real();
+              Q.col(2 * j + 1) = q[first + j].imag();
+            }
+          X.noalias() = V * Q;
+          for (std::size_t j = 0; j < m; ++j)
+            {
+              EigenPair &pair = pairs[first + j];
+              pair.lambda     = lambda[first + j];
+              pair.re.reinit(owned, comm);
+              pair.im.reinit(owned, comm);
+              internal::set_local_part(pair.re, X.col(2 * j));
+              internal::set_local_part(pair.im, X.col(2 * j + 1));
+            }
+        }
     }
   } // namespace eigen
 } // namespace squeal

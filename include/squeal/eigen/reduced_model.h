@@ -159,6 +159,19 @@ namespace squeal
              physics::PETScVector   &re,
              physics::PETScVector   &im) const;
 
+      /**
+       * The full-model vectors V q_j of several coefficient vectors at
+       * once, one pass over V for each 16 of them (a single expand() reads
+       * V, n x r, once per mode): @p pairs[j].re and .im (length n,
+       * re-initialised) for @p q[j] (length r), and .lambda from
+       * @p lambda[j] [1/s].
+       * @throws std::logic_error if @p lambda and @p q differ in length.
+       */
+      void
+      expand(const std::vector<Eigen::VectorXcd>     &q,
+             const std::vector<std::complex<double>> &lambda,
+             std::vector<EigenPair>                  &pairs) const;
+
       /** The largest number of real modes of one basis sample. */
       unsigned int
       sample_mode_count() const
