@@ -17,7 +17,10 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
+#include <stdexcept>
+#include <tuple>
 
 namespace squeal
 {
@@ -26,37 +29,41 @@ namespace squeal
     using namespace dealii;
 
 
-    std::string
-    ComplexEigenvalueAnalysis::write_mode(const physics::PETScVector &re,
-                                          const physics::PETScVector &im,
-                                          const std::string &name) const
+    std::vector<std::string>
+    ComplexEigenvalueAnalysis::write_modes(
+      const std::vector<eigen::EigenPair> &x,
+      const std::vector<std::string>      &names) const
     {
-      physics::PETScVector ghosted_re(model->locally_owned_dofs,
-                                      model->locally_relevant_dofs,
-                                      comm),
-        ghosted_im(model->locally_owned_dofs,
-                   model->locally_relevant_dofs,
-                   comm);
-      physics::PETScVector r = re, i = im;
-      model->constraints.distribute(r);
-      model->constraints.distribute(i);
-      ghosted_re = r;
-      ghosted_im = i;
-
+      if (x.size() != names.size())
+        throw std::logic_error("write_modes: " + std::to_string(x.size()) +
+                               " modes, " + std::to_string(names.size()) +
+                               " names");
+      const std::size_t m = x.size();
+      // every mode's real and imaginary parts (hanging-node values filled
+      // in, ghosted) in one DataOut: its patches map each cell once
+      std::vector<physics::PETScVector> ghosted;
+      ghosted.reserve(2 * m);
       DataOut<3> data_out;
       data_out.set_flags(io::vtk_flags());
       data_out.attach_dof_handler(model->dof_handler);
       const std::vector<
         DataComponentInterpretation::DataComponentInterpretation>
         vector(3, DataComponentInterpretation::component_is_part_of_vector);
-      data_out.add_data_vector(ghosted_re,
-                               std::vector<std::string>(3, "mode_real"),
-                               DataOut<3>::type_dof_data,
-                               vector);
-      data_out.add_data_vector(ghosted_im,
-                               std::vector<std::string>(3, "mode_imag"),
-                               DataOut<3>::type_dof_data,
-                               vector);
+      for (const eigen::EigenPair &pair : x)
+        for (const physics::PETScVector *v : {&pair.re, &pair.im})
+          {
+            physics::PETScVector owned = *v;
+            model->constraints.distribute(owned);
+            ghosted.emplace_back(model->locally_owned_dofs,
+                                 model->locally_relevant_dofs,
+                                 comm);
+            ghosted.back() = owned;
+            data_out.add_data_vector(
+              ghosted.back(),
+              std::vector<std::string>(3, v == &pair.re ? "re" : "im"),
+              DataOut<3>::type_dof_data,
+              vector);
+          }
       Vector<float> material(model->triangulation.n_active_cells());
       for (const auto &cell : model->triangulation.active_cell_iterators())
         material[cell->active_cell_index()] = cell->material_id();
@@ -64,27 +71,89 @@ namespace squeal
       data_out.build_patches(model->mapping,
                              model->fe.degree,
                              DataOut<3>::curved_inner_cells);
-      // one piece per rank and the record on rank 0 (deal.II's names),
-      // through checked files
-      const std::string  stem  = name + "_0";
-      const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
-      const auto         piece = [&](const unsigned int r) {
-        return stem + "." + std::to_string(r) + ".vtu";
-      };
-      {
-        io::OutputFile vtu(work_dir + "/modes/" + piece(rank));
-        data_out.write_vtu(vtu);
-      }
-      if (rank == 0)
+
+      // Each mode's file from those patches: a patch's data rows are the
+      // modes' six components in order (re x, y, z, im x, y, z), then the
+      // body, then the mapped points' coordinates when the patch has them.
+      const std::vector<std::string> data_names{"mode_real",
+                                                "mode_real",
+                                                "mode_real",
+                                                "mode_imag",
+                                                "mode_imag",
+                                                "mode_imag",
+                                                "body"};
+      const std::vector<
+        std::tuple<unsigned int,
+                   unsigned int,
+                   std::string,
+                   DataComponentInterpretation::DataComponentInterpretation>>
+                                                   ranges{{0,
+                                                           2,
+                                                           "mode_real",
+                                                           DataComponentInterpretation::component_is_part_of_vector},
+               {3,
+                                                           5,
+                                                           "mode_imag",
+                                                           DataComponentInterpretation::component_is_part_of_vector}};
+      const std::vector<DataOutBase::Patch<3, 3>> &all = data_out.get_patches();
+      std::vector<DataOutBase::Patch<3, 3>>        patches(all.size());
+      for (std::size_t k = 0; k < all.size(); ++k)
         {
-          std::vector<std::string> pieces;
-          for (unsigned int r = 0; r < Utilities::MPI::n_mpi_processes(comm);
-               ++r)
-            pieces.push_back(piece(r));
-          io::OutputFile pvtu(work_dir + "/modes/" + stem + ".pvtu");
-          data_out.write_pvtu_record(pvtu, pieces);
+          const auto &from = all[k];
+          auto       &to   = patches[k];
+          std::copy(std::begin(from.vertices),
+                    std::end(from.vertices),
+                    std::begin(to.vertices));
+          to.neighbors            = from.neighbors;
+          to.patch_index          = from.patch_index;
+          to.n_subdivisions       = from.n_subdivisions;
+          to.points_are_available = from.points_are_available;
+          to.reference_cell       = from.reference_cell;
+          to.data.reinit(7 + (from.points_are_available ? 3 : 0),
+                         from.data.n_cols());
         }
-      return stem + ".pvtu";
+      const unsigned int       rank = Utilities::MPI::this_mpi_process(comm);
+      std::vector<std::string> written;
+      for (std::size_t j = 0; j < m; ++j)
+        {
+          for (std::size_t k = 0; k < all.size(); ++k)
+            {
+              const auto        &from  = all[k];
+              auto              &to    = patches[k];
+              const unsigned int extra = from.points_are_available ? 3 : 0;
+              for (unsigned int c = 0; c < from.data.n_cols(); ++c)
+                {
+                  for (unsigned int r = 0; r < 6; ++r)
+                    to.data(r, c) = from.data(6 * j + r, c);
+                  for (unsigned int r = 0; r < 1 + extra; ++r)
+                    to.data(6 + r, c) = from.data(6 * m + r, c);
+                }
+            }
+          // one piece per rank and the record on rank 0 (deal.II's
+          // names), through checked files
+          const std::string stem  = names[j] + "_0";
+          const auto        piece = [&](const unsigned int r) {
+            return stem + "." + std::to_string(r) + ".vtu";
+          };
+          {
+            io::OutputFile vtu(work_dir + "/modes/" + piece(rank));
+            DataOutBase::write_vtu(
+              patches, data_names, ranges, io::vtk_flags(), vtu);
+          }
+          if (rank == 0)
+            {
+              std::vector<std::string> pieces;
+              for (unsigned int r = 0;
+                   r < Utilities::MPI::n_mpi_processes(comm);
+                   ++r)
+                pieces.push_back(piece(r));
+              io::OutputFile pvtu(work_dir + "/modes/" + stem + ".pvtu");
+              DataOutBase::write_pvtu_record(
+                pvtu, pieces, data_names, ranges, io::vtk_flags());
+            }
+          written.push_back(stem + ".pvtu");
+        }
+      return written;
     }
 
 
@@ -197,37 +266,93 @@ namespace squeal
       participation << ",name\n" << std::setprecision(8);
 
       std::vector<std::pair<double, std::string>> records;
-      for (const auto &[p, k] : chosen)
+      chosen.erase(std::remove_if(chosen.begin(),
+                                  chosen.end(),
+                                  [&](const auto &c) {
+                                    return points[c.first].q.empty() &&
+                                           points[c.first].full.empty();
+                                  }),
+                   chosen.end());
+      // 16 modes at a time: the reduced ones expanded in one product, the
+      // kinetic energies in one pass over the cells, the files from one
+      // set of patches
+      constexpr std::size_t batch = 16;
+      for (std::size_t first = 0; first < chosen.size(); first += batch)
         {
-          const auto          &pt = points[p];
-          physics::PETScVector re, im;
-          if (!pt.q.empty())
-            reduced.expand(pt.q[k], re, im);
-          else if (!pt.full.empty())
+          const std::size_t end = std::min(chosen.size(), first + batch);
+          std::vector<eigen::EigenPair>     x(end - first);
+          std::vector<Eigen::VectorXcd>     q;
+          std::vector<std::complex<double>> lambda;
+          std::vector<std::size_t>          reduced_at;
+          for (std::size_t j = first; j < end; ++j)
             {
-              re = pt.full[k].re;
-              im = pt.full[k].im;
+              const auto &[p, k] = chosen[j];
+              if (!points[p].q.empty())
+                {
+                  q.push_back(points[p].q[k]);
+                  lambda.push_back(points[p].lambda[k]);
+                  reduced_at.push_back(j - first);
+                }
+              else
+                {
+                  x[j - first].lambda = points[p].lambda[k];
+                  x[j - first].re     = points[p].full[k].re;
+                  x[j - first].im     = points[p].full[k].im;
+                }
             }
-          else
-            continue;
-          {
-            std::vector<double> shares;
-            const std::string   mode_name =
-              describe_mode(pt.values, re, im, &shares);
-            participation << p << ',' << k << ','
-                          << pt.lambda[k].imag() / (2 * M_PI) << ','
-                          << pt.lambda[k].real();
-            for (const double share : shares)
-              participation << ',' << share;
-            participation << ",\"" << mode_name << "\"\n";
-          }
-          std::ostringstream name;
-          name << "mode_p" << p << "_m" << k << "_" << std::fixed
-               << std::setprecision(1) << pt.lambda[k].imag() / (2 * M_PI)
-               << "Hz_re" << std::setprecision(3) << pt.lambda[k].real();
+          if (!q.empty())
+            {
+              std::vector<eigen::EigenPair> expanded;
+              reduced.expand(q, lambda, expanded);
+              for (std::size_t i = 0; i < reduced_at.size(); ++i)
+                {
+                  eigen::EigenPair &to = x[reduced_at[i]];
+                  to.lambda            = expanded[i].lambda;
+                  to.re.reinit(model->locally_owned_dofs, comm);
+                  to.im.reinit(model->locally_owned_dofs, comm);
+                  to.re = expanded[i].re;
+                  to.im = expanded[i].im;
+                }
+            }
+          std::vector<const parameters::ScalarPoint *> at;
+          std::vector<const physics::PETScVector *>    re, im;
+          for (std::size_t j = first; j < end; ++j)
+            {
+              at.push_back(&points[chosen[j].first].values);
+              re.push_back(&x[j - first].re);
+              im.push_back(&x[j - first].im);
+            }
+          const std::vector<std::vector<double>> energy =
+            physics::kinetic_energy_by_body(*model, at, re, im);
+          std::vector<std::string> names;
+          for (std::size_t j = first; j < end; ++j)
+            {
+              const auto &[p, k]     = chosen[j];
+              const auto         &pt = points[p];
+              std::vector<double> shares;
+              const std::string   mode_name =
+                analyses::mode_name(*model,
+                                    pt.values,
+                                    *re[j - first],
+                                    *im[j - first],
+                                    &shares,
+                                    false,
+                                    &energy[j - first]);
+              participation << p << ',' << k << ','
+                            << pt.lambda[k].imag() / (2 * M_PI) << ','
+                            << pt.lambda[k].real();
+              for (const double share : shares)
+                participation << ',' << share;
+              participation << ",\"" << mode_name << "\"\n";
+              std::ostringstream name;
+              name << "mode_p" << p << "_m" << k << "_" << std::fixed
+                   << std::setprecision(1) << pt.lambda[k].imag() / (2 * M_PI)
+                   << "Hz_re" << std::setprecision(3) << pt.lambda[k].real();
+              names.push_back(name.str());
+            }
           // the record names the file written (deal.II appends the counter)
-          records.emplace_back(records.size(),
-                               "modes/" + write_mode(re, im, name.str()));
+          for (const std::string &file : write_modes(x, names))
+            records.emplace_back(records.size(), "modes/" + file);
         }
       write_error_indicator();
       if (root)

@@ -159,12 +159,15 @@ namespace squeal
               const physics::PETScVector     &re,
               const physics::PETScVector     &im,
               std::vector<double>            *shares,
-              const bool                      with_direction)
+              const bool                      with_direction,
+              const std::vector<double>      *energy)
     {
       // kinetic-energy shares with the whole mass of the point (every body
       // at its density)
       const std::vector<double> e =
-        physics::kinetic_energy_by_body(model, values, re, im);
+        energy != nullptr ?
+          *energy :
+          physics::kinetic_energy_by_body(model, values, re, im);
       const auto &bodies = model.scene->bodies;
       const auto  share  = [&](const scene::Body &b) {
         return b.id < e.size() ? e[b.id] : 0.;

@@ -119,12 +119,14 @@ namespace squeal
       /// Eigensolver/Certification margin (unstable or nearly so).
       bool
       near_unstable(const std::complex<double> lambda) const;
-      /// writes the mode re + i im as modes/NAME_0.pvtu (+ .vtu pieces);
-      /// returns the .pvtu's name relative to modes/
-      std::string
-      write_mode(const physics::PETScVector &re,
-                 const physics::PETScVector &im,
-                 const std::string          &name) const;
+      /// writes each mode @p x[j] (re + i im) as modes/NAMES[j]_0.pvtu
+      /// (+ one .vtu piece per rank) from one set of patches for all of
+      /// them (the mapping evaluated once per cell); returns the .pvtu
+      /// names relative to modes/. Throws std::logic_error if @p x and
+      /// @p names differ in length.
+      std::vector<std::string>
+      write_modes(const std::vector<eigen::EigenPair> &x,
+                  const std::vector<std::string>      &names) const;
       /// Kelly's indicator on the first point's modes: mesh_error.vtu and
       /// the share of each body, printed
       void

@@ -52,6 +52,8 @@ namespace squeal
      * order, summing to 1). Collective over the model's communicator.
      * @param re, im the mode's real and imaginary parts (n_dofs, locally
      * owned entries) [m, any scale]
+     * @param energy the mode's kinetic energy by body, as
+     * physics::kinetic_energy_by_body() gives it (computed here when null)
      */
     std::string
     mode_name(const physics::StructuralModel &model,
@@ -59,7 +61,8 @@ namespace squeal
               const physics::PETScVector     &re,
               const physics::PETScVector     &im,
               std::vector<double>            *shares         = nullptr,
-              bool                            with_direction = false);
+              bool                            with_direction = false,
+              const std::vector<double>      *energy         = nullptr);
   } // namespace analyses
 } // namespace squeal
 

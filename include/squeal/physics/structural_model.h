@@ -550,6 +550,20 @@ namespace squeal
                            const PETScVector             &im);
 
     /**
+     * kinetic_energy_by_body() of several modes in one pass over the cells
+     * (the mapped quadrature of a cell computed once for all of them):
+     * entry j for the mode @p re[j] + i @p im[j] at the point @p p[j].
+     * Collective.
+     * @throws std::logic_error if @p p, @p re and @p im differ in length.
+     */
+    std::vector<std::vector<double>>
+    kinetic_energy_by_body(
+      const StructuralModel                              &model,
+      const std::vector<const parameters::ScalarPoint *> &p,
+      const std::vector<const PETScVector *>             &re,
+      const std::vector<const PETScVector *>             &im);
+
+    /**
      * The support point [m] and the component (0, 1, 2) of every DoF of
      * @p model, from all cells of its mesh (every rank holds the whole
      * parallel::shared mesh, so every rank gets all n_dofs entries).
