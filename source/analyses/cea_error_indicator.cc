@@ -49,8 +49,9 @@ namespace squeal
       const unsigned int    n_cells = model->triangulation.n_active_cells();
       Vector<double>        sum(n_cells);
       std::vector<physics::PETScVector> ghosted;
-      ghosted.reserve(2 * std::min(batch, pairs.size()));
-      for (std::size_t k = 0; k < ghosted.capacity(); ++k)
+      const std::size_t n_ghosted = 2 * std::min(batch, pairs.size());
+      ghosted.reserve(n_ghosted);
+      for (std::size_t k = 0; k < n_ghosted; ++k)
         ghosted.emplace_back(model->locally_owned_dofs,
                              model->locally_relevant_dofs,
                              comm);

@@ -1,5 +1,7 @@
 // Lumped masses of a scene (a weight on a face set, an accelerometer at a
-// point) in the assembled mass and in the explicit dynamics' lumped mass.
+// point) in the assembled mass and in the explicit dynamics' lumped mass,
+// and the modes' kinetic energy by body (the bodies' densities and these
+// masses).
 
 #include <deal.II/base/qprojector.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -10,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace squeal
 {
@@ -166,6 +170,114 @@ namespace squeal
           M.add(d, d, m.mass);
       point_masses.push_back(pm);
       M.compress(VectorOperation::add);
+    }
+
+    std::vector<double>
+    kinetic_energy_by_body(const StructuralModel         &model,
+                           const parameters::ScalarPoint &p,
+                           const PETScVector             &re,
+                           const PETScVector             &im)
+    {
+      return kinetic_energy_by_body(model, {&p}, {&re}, {&im})[0];
+    }
+
+    std::vector<std::vector<double>>
+    kinetic_energy_by_body(
+      const StructuralModel                              &model,
+      const std::vector<const parameters::ScalarPoint *> &p,
+      const std::vector<const PETScVector *>             &re,
+      const std::vector<const PETScVector *>             &im)
+    {
+      if (re.size() != p.size() || im.size() != p.size())
+        throw std::logic_error(
+          "kinetic_energy_by_body: " + std::to_string(p.size()) + " points, " +
+          std::to_string(re.size()) + " and " + std::to_string(im.size()) +
+          " vectors");
+      const std::size_t  m       = p.size();
+      types::material_id largest = 0;
+      for (const auto &cell : model.triangulation.active_cell_iterators())
+        largest = std::max(largest, cell->material_id());
+      largest = Utilities::MPI::max(largest, model.comm);
+      std::vector<std::vector<double>> energy(m,
+                                              std::vector<double>(largest + 1,
+                                                                  0.));
+      // each mode's real and imaginary parts with the hanging-node values
+      std::vector<PETScVector> ghosted;
+      ghosted.reserve(2 * m);
+      for (std::size_t j = 0; j < m; ++j)
+        for (const PETScVector *x : {re[j], im[j]})
+          {
+            PETScVector owned = *x;
+            model.constraints.distribute(owned);
+            ghosted.emplace_back(model.locally_owned_dofs,
+                                 model.locally_relevant_dofs,
+                                 model.comm);
+            ghosted.back() = owned;
+          }
+      const QGauss<3>             quadrature(model.fe.degree + 1);
+      FEValues<3>                 fe_values(model.mapping,
+                            model.fe,
+                            quadrature,
+                            update_values | update_JxW_values);
+      std::vector<Vector<double>> values(quadrature.size(), Vector<double>(3));
+      for (const auto &cell : model.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            for (std::size_t v = 0; v < ghosted.size(); ++v)
+              {
+                fe_values.get_function_values(ghosted[v], values);
+                const double rho =
+                  model.scene->density(cell->material_id(), *p[v / 2]);
+                double &e = energy[v / 2][cell->material_id()];
+                for (unsigned int q = 0; q < quadrature.size(); ++q)
+                  e += rho * (values[q] * values[q]) * fe_values.JxW(q);
+              }
+          }
+      // the lumped masses (at their values at p), with the body they sit on
+      const QGauss<2>             face_rule(model.fe.degree + 1);
+      FEFaceValues<3>             fv(model.mapping,
+                         model.fe,
+                         face_rule,
+                         update_values | update_JxW_values);
+      std::vector<Vector<double>> face_values(face_rule.size(),
+                                              Vector<double>(3));
+      for (const scene::LumpedMass &lumped : model.scene->masses)
+        if (lumped.on_faces)
+          {
+            const double area = boundary_area(model, lumped.faces);
+            for (const auto &cell : model.dof_handler.active_cell_iterators())
+              if (cell->is_locally_owned())
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->face(f)->at_boundary() &&
+                      cell->face(f)->boundary_id() == lumped.faces)
+                    {
+                      fv.reinit(cell, f);
+                      for (std::size_t v = 0; v < ghosted.size(); ++v)
+                        {
+                          fv.get_function_values(ghosted[v], face_values);
+                          const double density =
+                            p[v / 2]->get(lumped.name + ".m") / area;
+                          double &e = energy[v / 2][cell->material_id()];
+                          for (unsigned int q = 0; q < face_rule.size(); ++q)
+                            e += density * (face_values[q] * face_values[q]) *
+                                 fv.JxW(q);
+                        }
+                    }
+          }
+      for (const auto &pm : model.point_masses)
+        for (const auto d : pm.dofs)
+          if (model.locally_owned_dofs.is_element(d))
+            for (std::size_t v = 0; v < ghosted.size(); ++v)
+              energy[v / 2][pm.body] +=
+                p[v / 2]->get(pm.name + ".m") * ghosted[v](d) * ghosted[v](d);
+      for (std::vector<double> &e : energy)
+        {
+          std::vector<double> total(e.size());
+          Utilities::MPI::sum(e, model.comm, total);
+          e = std::move(total);
+        }
+      return energy;
     }
   } // namespace physics
 } // namespace squeal
