@@ -179,8 +179,7 @@ namespace squeal
         rich.interface_mask  = model.interface_mask;
         rich.varied          = model.varied;
         rich.tie_constraints = model.tie_constraints;
-        rich.setup_and_assemble(quiet);
-        rich.replay_refinement(model.refinement_history, quiet);
+        rich.setup_and_assemble(model.refinement_history, quiet);
         n_dofs = rich.n_dofs();
         // the coarse shapes at the rich model's support points
         std::vector<std::vector<std::complex<double>>> carried;
@@ -606,8 +605,7 @@ namespace squeal
       rebuilt->interface_mask  = model->interface_mask;
       rebuilt->varied          = model->varied;
       rebuilt->tie_constraints = model->tie_constraints;
-      rebuilt->setup_and_assemble(quiet);
-      rebuilt->replay_refinement(model->refinement_history, quiet);
+      rebuilt->setup_and_assemble(model->refinement_history, quiet);
       model      = std::move(rebuilt); // the old model first,
       raised_prm = std::move(raised);  // then its parameters
       return true;

@@ -223,11 +223,32 @@ namespace squeal
     void
     StructuralModel::setup_and_assemble(ConditionalOStream &pcout)
     {
+      setup_and_assemble({}, pcout);
+    }
+
+    void
+    StructuralModel::setup_and_assemble(
+      const std::vector<std::vector<bool>> &history,
+      ConditionalOStream                   &pcout)
+    {
       auto made = scene::make_scene(prm);
       for (const auto &[name, value] : nominal_overrides)
         made->set_nominal(name, value);
       scene = std::move(made);
       scene->make_mesh(triangulation);
+      for (const auto &flags : history)
+        {
+          // deal.II stores dim bits (the refinement case) per active cell
+          if (flags.size() != 3 * triangulation.n_active_cells())
+            throw std::runtime_error(
+              "refinement history: a step has " + std::to_string(flags.size()) +
+              " refine-flag bits for a mesh of " +
+              std::to_string(triangulation.n_active_cells()) +
+              " cells (3 per cell expected)");
+          triangulation.load_refine_flags(flags);
+          triangulation.execute_coarsening_and_refinement();
+          refinement_history.push_back(flags);
+        }
       setup_dofs_and_assemble(pcout);
     }
 
@@ -259,27 +280,6 @@ namespace squeal
       triangulation.save_refine_flags(flags);
       refinement_history.push_back(flags);
       triangulation.execute_coarsening_and_refinement();
-      setup_dofs_and_assemble(pcout);
-    }
-
-    void
-    StructuralModel::replay_refinement(
-      const std::vector<std::vector<bool>> &history,
-      ConditionalOStream                   &pcout)
-    {
-      for (const auto &flags : history)
-        {
-          // deal.II stores dim bits (the refinement case) per active cell
-          if (flags.size() != 3 * triangulation.n_active_cells())
-            throw std::runtime_error(
-              "replay_refinement: a step has " + std::to_string(flags.size()) +
-              " refine-flag bits for a mesh of " +
-              std::to_string(triangulation.n_active_cells()) +
-              " cells (3 per cell expected)");
-          triangulation.load_refine_flags(flags);
-          triangulation.execute_coarsening_and_refinement();
-          refinement_history.push_back(flags);
-        }
       setup_dofs_and_assemble(pcout);
     }
 

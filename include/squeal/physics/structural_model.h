@@ -268,6 +268,19 @@ namespace squeal
       setup_and_assemble(dealii::ConditionalOStream &pcout);
 
       /**
+       * setup_and_assemble() on the coarse mesh refined first by the steps
+       * of another model's refinement_history (same scene, possibly another
+       * degree), which this model's refinement_history then holds; the
+       * DoFs, constraints and matrix parts are built once, on the refined
+       * mesh: afterwards both models have the same cells in the same order.
+       * @throws std::runtime_error if a step does not fit the mesh (a
+       * different scene).
+       */
+      void
+      setup_and_assemble(const std::vector<std::vector<bool>> &history,
+                         dealii::ConditionalOStream           &pcout);
+
+      /**
        * Refines the cells with the largest @p indicator (one value per
        * active cell, the same on every rank), then builds the DoFs,
        * constraints and matrix parts again on the new mesh (as
@@ -285,22 +298,9 @@ namespace squeal
              bool                         by_error,
              dealii::ConditionalOStream  &pcout);
 
-      /**
-       * Applies the refinement steps of another model's
-       * refinement_history (same scene, possibly another degree) to this
-       * model's mesh, which must be the coarse mesh setup_and_assemble()
-       * built, then builds the DoFs, constraints and matrix parts once:
-       * afterwards both models have the same cells in the same order.
-       * @throws std::runtime_error if a step does not fit the mesh (a
-       * different scene or an already refined mesh).
-       */
-      void
-      replay_refinement(const std::vector<std::vector<bool>> &history,
-                        dealii::ConditionalOStream           &pcout);
-
       /// The refine flags of every refine() so far (deal.II's
       /// save_refine_flags: 3 bits per active cell of the mesh before that
-      /// step), for replay_refinement().
+      /// step), for setup_and_assemble() of another model on the same mesh.
       std::vector<std::vector<bool>> refinement_history;
 
       /**
