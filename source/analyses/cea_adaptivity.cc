@@ -22,6 +22,7 @@
 #include <functional>
 #include <iomanip>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -154,8 +155,25 @@ namespace squeal
         return n_raised;
       }
 
+      // A model of MODEL's scene with PRM (another degree; PRM must outlive
+      // it) on MODEL's refined mesh, with its interface, varied parameters
+      // and ties, assembled once.
+      std::unique_ptr<physics::StructuralModel>
+      on_same_mesh(const physics::StructuralModel  &model,
+                   const parameters::AllParameters &prm,
+                   ConditionalOStream              &quiet)
+      {
+        auto result =
+          std::make_unique<physics::StructuralModel>(prm, model.comm);
+        result->interface_mask  = model.interface_mask;
+        result->varied          = model.varied;
+        result->tie_constraints = model.tie_constraints;
+        result->setup_and_assemble(model.refinement_history, quiet);
+        return result;
+      }
+
       // The partners of PAIRS (on MODEL's mesh) in the same mesh at the
-      // degree + EXTRA: that model built (the refinement replayed), solved
+      // degree + EXTRA: that model built (on_same_mesh()), solved
       // at P in BAND by the full solver, or PROJECTED (below); its DoF count
       // goes to N_DOFS.
       std::vector<Partner>
@@ -175,12 +193,9 @@ namespace squeal
         ConditionalOStream        quiet(std::cout, false);
         parameters::AllParameters prm_rich = prm;
         prm_rich.mesh.fe_degree += extra;
-        physics::StructuralModel rich(prm_rich, model.comm);
-        rich.interface_mask  = model.interface_mask;
-        rich.varied          = model.varied;
-        rich.tie_constraints = model.tie_constraints;
-        rich.setup_and_assemble(model.refinement_history, quiet);
-        n_dofs = rich.n_dofs();
+        const auto rich_model = on_same_mesh(model, prm_rich, quiet);
+        const physics::StructuralModel &rich = *rich_model;
+        n_dofs                               = rich.n_dofs();
         // the coarse shapes at the rich model's support points
         std::vector<std::vector<std::complex<double>>> carried;
         for (const auto &x : shapes)
@@ -601,13 +616,9 @@ namespace squeal
       pcout << ": degree " << degree + 1 << " on the same mesh" << std::endl;
       auto raised = std::make_unique<parameters::AllParameters>(model->prm);
       raised->mesh.fe_degree = degree + 1;
-      auto rebuilt = std::make_unique<physics::StructuralModel>(*raised, comm);
-      rebuilt->interface_mask  = model->interface_mask;
-      rebuilt->varied          = model->varied;
-      rebuilt->tie_constraints = model->tie_constraints;
-      rebuilt->setup_and_assemble(model->refinement_history, quiet);
-      model      = std::move(rebuilt); // the old model first,
-      raised_prm = std::move(raised);  // then its parameters
+      auto rebuilt           = on_same_mesh(*model, *raised, quiet);
+      model                  = std::move(rebuilt); // the old model first,
+      raised_prm             = std::move(raised);  // then its parameters
       return true;
     }
 

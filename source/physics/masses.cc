@@ -224,14 +224,17 @@ namespace squeal
         if (cell->is_locally_owned())
           {
             fe_values.reinit(cell);
-            for (std::size_t v = 0; v < ghosted.size(); ++v)
+            for (std::size_t j = 0; j < m; ++j)
               {
-                fe_values.get_function_values(ghosted[v], values);
                 const double rho =
-                  model.scene->density(cell->material_id(), *p[v / 2]);
-                double &e = energy[v / 2][cell->material_id()];
-                for (unsigned int q = 0; q < quadrature.size(); ++q)
-                  e += rho * (values[q] * values[q]) * fe_values.JxW(q);
+                  model.scene->density(cell->material_id(), *p[j]);
+                double &e = energy[j][cell->material_id()];
+                for (const std::size_t v : {2 * j, 2 * j + 1})
+                  {
+                    fe_values.get_function_values(ghosted[v], values);
+                    for (unsigned int q = 0; q < quadrature.size(); ++q)
+                      e += rho * (values[q] * values[q]) * fe_values.JxW(q);
+                  }
               }
           }
       // the lumped masses (at their values at p), with the body they sit on
@@ -266,11 +269,14 @@ namespace squeal
                     }
           }
       for (const auto &pm : model.point_masses)
-        for (const auto d : pm.dofs)
-          if (model.locally_owned_dofs.is_element(d))
-            for (std::size_t v = 0; v < ghosted.size(); ++v)
-              energy[v / 2][pm.body] +=
-                p[v / 2]->get(pm.name + ".m") * ghosted[v](d) * ghosted[v](d);
+        for (std::size_t j = 0; j < m; ++j)
+          {
+            const double mass = p[j]->get(pm.name + ".m");
+            for (const auto d : pm.dofs)
+              if (model.locally_owned_dofs.is_element(d))
+                for (const std::size_t v : {2 * j, 2 * j + 1})
+                  energy[j][pm.body] += mass * ghosted[v](d) * ghosted[v](d);
+          }
       for (std::vector<double> &e : energy)
         {
           std::vector<double> total(e.size());
