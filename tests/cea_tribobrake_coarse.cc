@@ -19,6 +19,7 @@
 // - the eigenvalues of the first point are printed to 8 digits: the
 //   .mpirun=2 variant must reproduce the serial ones (numdiff, 1e-8).
 
+#include <squeal/base/memory_estimate.h>
 #include <squeal/eigen/full_solver.h>
 #include <squeal/eigen/reduced_model.h>
 #include <squeal/eigen/tracking.h>
@@ -183,21 +184,28 @@ main(int argc, char **argv)
         }
     }
 
-  // the full solver with PARPACK, and with squeal's block Lanczos, for the
-  // symmetric modes instead of SLEPc's Krylov-Schur; and the reduced
-  // basis's modes of one sample by block Lanczos against Krylov-Schur
+  // the full solver with PARPACK, and with squeal's block Lanczos (the
+  // default; in core with the basis' mass products, out of core without),
+  // for the symmetric modes instead of SLEPc's Krylov-Schur; and the
+  // reduced basis's modes of one sample by block Lanczos against
+  // Krylov-Schur
   {
-    const auto             point = at_point(25e9, 0.5);
+    const auto point              = at_point(25e9, 0.5);
+    auto       krylov_schur       = band;
+    krylov_schur.symmetric_solver = "slepc";
     eigen::FullSolveReport slepc_report;
     const auto             slepc =
-      eigen::solve_full(parts, point, band, quiet, &slepc_report);
-    for (const std::string solver : {"arpack", "block"})
+      eigen::solve_full(parts, point, krylov_schur, quiet, &slepc_report);
+    for (const std::string solver : {"arpack", "block", "block out of core"})
       {
         auto other             = band;
-        other.symmetric_solver = solver;
+        other.symmetric_solver = solver.substr(0, solver.find(' '));
+        if (solver == "block out of core")
+          set_factor_storage("out of core", "");
         eigen::FullSolveReport report;
         const auto             other_modes =
           eigen::solve_full(parts, point, other, quiet, &report);
+        set_factor_storage("in core", "");
         double largest = 0., residual = 0.;
         for (unsigned int i = 0; i < std::min(slepc.size(), other_modes.size());
              ++i)
@@ -235,7 +243,8 @@ main(int argc, char **argv)
     parts.mass(sample, M);
     auto block             = band;
     block.symmetric_solver = "block";
-    const auto krylov    = eigen::solve_undamped(M, K, band, 1.5, true, quiet);
+    const auto krylov =
+      eigen::solve_undamped(M, K, krylov_schur, 1.5, true, quiet);
     const auto blockwise = eigen::solve_undamped(M, K, block, 1.5, true, quiet);
     double     largest   = 0.;
     // relative to omega^2 - sigma (sigma = -(2 pi 100 Hz)^2, the shift):

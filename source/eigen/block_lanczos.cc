@@ -51,81 +51,191 @@ namespace squeal
             x[i] = start_value(first + i, seed);
         }
 
-        // the largest M-norm of W's columns
-        double
-        largest_m_norm(const PETScMatrix &M, const Eigen::MatrixXd &W)
+        // A block of vectors W (this rank's rows) with its mass product
+        // MW = M W, carried along every linear combination of W's columns
+        struct Block
         {
-          Eigen::MatrixXd squares =
-            W.cwiseProduct(multiply(M, W)).colwise().sum();
-          sum_over_ranks(squares, M.get_mpi_communicator());
+          Eigen::MatrixXd W, MW;
+        };
+
+        // B <- B T in place (B n x m, T m x k, k <= m: B's first k
+        // columns), a block of rows at a time
+        void
+        combine_in_place(Eigen::Ref<Eigen::MatrixXd> B,
+                         const Eigen::MatrixXd      &T)
+        {
+          constexpr Eigen::Index height = 1024;
+          for (Eigen::Index i = 0; i < B.rows(); i += height)
+            {
+              const Eigen::Index    h       = std::min(height, B.rows() - i);
+              const Eigen::MatrixXd product = B.middleRows(i, h) * T;
+              B.block(i, 0, h, T.cols())    = product;
+            }
+        }
+
+        // The Lanczos basis V, M-orthonormal, and with @p stored its mass
+        // products M V, updated with V. With them a step needs one sparse
+        // product, M W of the operator's new block: every projection
+        // V^T M X is (M V)^T X and every combination of columns is applied
+        // to both. Without them (the factors out of core, memory short) the
+        // new block's M W is formed again after each Gram-Schmidt pass.
+        // Both are allocated once at their largest size (n x largest; the
+        // pages become resident as columns are written) and freed at once.
+        class LanczosBasis
+        {
+        public:
+          LanczosBasis(const PETScMatrix &M,
+                       const bool         stored,
+                       const Eigen::Index n,
+                       const Eigen::Index largest)
+            : M(M)
+            , stored(stored)
+            , V_storage(n, largest)
+            , MV_storage(stored ? n : 0, stored ? largest : 0)
+          {}
+
+          const PETScMatrix &M;
+          const bool         stored;
+
+          // the basis, n x cols()
+          Eigen::
+            Block<const Eigen::MatrixXd, Eigen::Dynamic, Eigen::Dynamic, true>
+            V() const
+          {
+            return V_storage.leftCols(k);
+          }
+
+          Eigen::Index
+          cols() const
+          {
+            return k;
+          }
+
+          // V^T M X with X's mass product MX
+          Eigen::MatrixXd
+          project(const Eigen::MatrixXd &X, const Eigen::MatrixXd &MX) const
+          {
+            Eigen::MatrixXd h =
+              stored ? Eigen::MatrixXd(MV_storage.leftCols(k).transpose() * X) :
+                       Eigen::MatrixXd(V().transpose() * MX);
+            sum_over_ranks(h, M.get_mpi_communicator());
+            return h;
+          }
+
+          // X -= V (V^T M X), twice (block classical Gram-Schmidt in the M
+          // inner product); returns the sum of the two coefficient blocks
+          // (cols() x X.cols())
+          Eigen::MatrixXd
+          orthogonalise(Block &x) const
+          {
+            Eigen::MatrixXd H = Eigen::MatrixXd::Zero(k, x.W.cols());
+            if (k == 0)
+              return H;
+            for (unsigned int pass = 0; pass < 2; ++pass)
+              {
+                const Eigen::MatrixXd h = project(x.W, x.MW);
+                x.W.noalias() -= V() * h;
+                if (stored)
+                  x.MW.noalias() -= MV_storage.leftCols(k) * h;
+                else
+                  x.MW = multiply(M, x.W);
+                H += h;
+              }
+            return H;
+          }
+
+          // V <- [V, W] (and M V)
+          void
+          append(const Block &w)
+          {
+            const Eigen::Index b = w.W.cols();
+            if (k + b > V_storage.cols())
+              throw std::logic_error("block Lanczos: the basis is full");
+            V_storage.middleCols(k, b) = w.W;
+            if (stored)
+              MV_storage.middleCols(k, b) = w.MW;
+            k += b;
+          }
+
+          // V <- V Y (and M V), Y cols() x m, m <= cols()
+          void
+          combine(const Eigen::MatrixXd &Y)
+          {
+            combine_in_place(V_storage.leftCols(k), Y);
+            if (stored)
+              combine_in_place(MV_storage.leftCols(k), Y);
+            k = Y.cols();
+          }
+
+        private:
+          Eigen::MatrixXd V_storage, MV_storage;
+          Eigen::Index    k = 0;
+        };
+
+        // the largest M-norm of a block's columns
+        double
+        largest_m_norm(const Block &x, const MPI_Comm comm)
+        {
+          Eigen::MatrixXd squares = x.W.cwiseProduct(x.MW).colwise().sum();
+          sum_over_ranks(squares, comm);
           return std::sqrt(std::max(0., squares.maxCoeff()));
         }
 
-        // W -= V (V^T M W), twice (block classical Gram-Schmidt in the M
-        // inner product, V M-orthonormal); returns the sum of the two
-        // coefficient blocks (V.cols() x W.cols())
-        Eigen::MatrixXd
-        orthogonalise(const PETScMatrix     &M,
-                      const Eigen::MatrixXd &V,
-                      Eigen::MatrixXd       &W)
+        // x.W <- x.W T, x.MW <- x.MW T
+        void
+        transform(Block &x, const Eigen::MatrixXd &T)
         {
-          Eigen::MatrixXd H = Eigen::MatrixXd::Zero(V.cols(), W.cols());
-          if (V.cols() == 0)
-            return H;
-          for (unsigned int pass = 0; pass < 2; ++pass)
-            {
-              Eigen::MatrixXd h = V.transpose() * multiply(M, W);
-              sum_over_ranks(h, M.get_mpi_communicator());
-              W.noalias() -= V * h;
-              H += h;
-            }
-          return H;
+          x.W  = (x.W * T).eval();
+          x.MW = (x.MW * T).eval();
         }
 
-        // Makes W M-orthonormal and M-orthogonal to V: W_before = W R
+        // Makes x.W M-orthonormal and M-orthogonal to V: W_before = W R
         // (plus V's part), R returned (b x b). Directions whose M-norm
         // fell below 1e-10 of @p reference (the largest M-norm before the
         // orthogonalisation against V: the block is nearly in the span)
         // are replaced by start vectors orthogonalised against V and the
-        // rest, with zero rows in R. Cholesky QR twice.
+        // rest, with zero rows in R. Cholesky QR twice, on W and M W
+        // together (the transformations are b x b and well conditioned).
         Eigen::MatrixXd
-        orthonormalise(const PETScMatrix      &M,
-                       const Eigen::MatrixXd  &V,
-                       Eigen::MatrixXd        &W,
+        orthonormalise(const LanczosBasis     &basis,
+                       Block                  &x,
                        const double            reference,
                        const dealii::IndexSet &owned,
                        std::uint64_t          &seed)
         {
-          const MPI_Comm  comm = M.get_mpi_communicator();
-          const int       b    = W.cols();
-          Eigen::MatrixXd G    = W.transpose() * multiply(M, W);
+          const MPI_Comm  comm = basis.M.get_mpi_communicator();
+          const int       b    = x.W.cols();
+          Eigen::MatrixXd G    = x.W.transpose() * x.MW;
           sum_over_ranks(G, comm);
           G = (G + G.transpose()).eval() / 2.;
           Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(G);
-          W                 = W * es.eigenvectors();
+          transform(x, es.eigenvectors());
           Eigen::MatrixXd R = es.eigenvectors().transpose();
           for (int j = 0; j < b; ++j)
             {
               const double d = std::max(0., es.eigenvalues()[j]);
               if (d > 1e-20 * reference * reference)
                 {
-                  W.col(j) /= std::sqrt(d);
+                  x.W.col(j) /= std::sqrt(d);
+                  x.MW.col(j) /= std::sqrt(d);
                   R.row(j) *= std::sqrt(d);
                 }
               else
                 {
                   R.row(j).setZero();
-                  fill_start(W.col(j), owned, seed++);
-                  Eigen::MatrixXd x = W.col(j);
-                  orthogonalise(M, V, x);
-                  W.col(j) = x;
+                  Block y{Eigen::MatrixXd(x.W.rows(), 1), {}};
+                  fill_start(y.W.col(0), owned, seed++);
+                  y.MW = multiply(basis.M, y.W);
+                  basis.orthogonalise(y);
+                  x.W.col(j)  = y.W.col(0);
+                  x.MW.col(j) = y.MW.col(0);
                 }
             }
           // Cholesky QR twice (the replaced directions are orthogonalised
           // against the others here)
           for (unsigned int pass = 0; pass < 2; ++pass)
             {
-              Eigen::MatrixXd G2 = W.transpose() * multiply(M, W);
+              Eigen::MatrixXd G2 = x.W.transpose() * x.MW;
               sum_over_ranks(G2, comm);
               G2 = (G2 + G2.transpose()).eval() / 2.;
               Eigen::LLT<Eigen::MatrixXd> llt(G2);
@@ -134,10 +244,10 @@ namespace squeal
                   "block Lanczos: a new block lost its M-orthogonality "
                   "(Cholesky QR failed)");
               const Eigen::MatrixXd U = llt.matrixU();
-              W                       = U.transpose()
-                    .triangularView<Eigen::Lower>()
-                    .solve(W.transpose())
-                    .transpose();
+              const Eigen::MatrixXd U_inverse =
+                U.triangularView<Eigen::Upper>().solve(
+                  Eigen::MatrixXd::Identity(b, b));
+              transform(x, U_inverse);
               R = (U * R).eval();
             }
           return R;
@@ -167,9 +277,13 @@ namespace squeal
         const Eigen::Index     N     = M.m();
         const Eigen::Index     n     = owned.n_elements();
         const Eigen::Index     c     = wanted;
-        const auto [block, basis]    = block_and_basis(wanted, N);
-        const Eigen::Index b         = block;
-        const Eigen::Index largest   = basis;
+        // M V kept beside V unless the factors are out of core (the
+        // memory is short then)
+        const bool store_products = !factors_out_of_core();
+        const auto [block, basis_size] =
+          block_and_basis(wanted, N, !store_products);
+        const Eigen::Index b       = block;
+        const Eigen::Index largest = basis_size;
         if (largest < c + b)
           throw std::runtime_error(
             "block Lanczos: " + std::to_string(wanted) +
@@ -180,52 +294,66 @@ namespace squeal
         block_size                   = b;
         // MUMPS treats the right-hand sides in blocks of ICNTL(27) (32 by
         // default): one block per step means one forward and one backward
-        // pass through the factors (out of core: read from disk twice)
+        // pass through the factors (out of core: read from disk twice).
+        // The caller's block solves with the same factors (the full
+        // solver's corrections, hundreds of columns) get the value back.
+        PC  pc;
+        Mat factors;
+        check_petsc(KSPGetPC(static_cast<KSP>(shifted.solver->handle()), &pc),
+                    "block Lanczos",
+                    "KSPGetPC");
+        check_petsc(PCFactorGetMatrix(pc, &factors),
+                    "block Lanczos",
+                    "PCFactorGetMatrix");
+        PetscInt rhs_block = 0;
+        check_petsc(MatMumpsGetIcntl(factors, 27, &rhs_block),
+                    "block Lanczos",
+                    "MatMumpsGetIcntl");
+        check_petsc(MatMumpsSetIcntl(factors, 27, b),
+                    "block Lanczos",
+                    "MatMumpsSetIcntl");
+        struct Restore
         {
-          PC  pc;
-          Mat F;
-          check_petsc(KSPGetPC(static_cast<KSP>(shifted.solver->handle()), &pc),
-                      "block Lanczos",
-                      "KSPGetPC");
-          check_petsc(PCFactorGetMatrix(pc, &F),
-                      "block Lanczos",
-                      "PCFactorGetMatrix");
-          check_petsc(MatMumpsSetIcntl(F, 27, b),
-                      "block Lanczos",
-                      "MatMumpsSetIcntl");
-        }
-        std::uint64_t   seed = 1;
-        void *const     ksp  = shifted.solver->handle();
-        Eigen::MatrixXd V(n, 0), next(n, b);
+          Mat      factors;
+          PetscInt value;
+          ~Restore()
+          {
+            MatMumpsSetIcntl(factors, 27, value);
+          }
+        } restore{factors, rhs_block};
+        std::uint64_t seed = 1;
+        void *const   ksp  = shifted.solver->handle();
+        LanczosBasis  basis(M, store_products, n, largest);
+        Block         next{Eigen::MatrixXd(n, b), {}};
         for (Eigen::Index j = 0; j < b; ++j)
-          fill_start(next.col(j), owned, seed++);
-        orthonormalise(M, V, next, largest_m_norm(M, next), owned, seed);
+          fill_start(next.W.col(j), owned, seed++);
+        next.MW = multiply(M, next.W);
+        orthonormalise(basis, next, largest_m_norm(next, comm), owned, seed);
         // OP V = V T + next F (the Krylov-Schur relation)
         Eigen::MatrixXd T(0, 0), F(b, 0);
         for (;; ++restarts)
           {
-            while (V.cols() + b <= largest)
+            while (basis.cols() + b <= largest)
               {
-                const Eigen::Index k = V.cols();
-                V.conservativeResize(Eigen::NoChange, k + b);
-                V.rightCols(b) = next;
+                const Eigen::Index k = basis.cols();
+                basis.append(next);
                 T.conservativeResize(k + b, k + b);
                 T.bottomLeftCorner(b, k) = F;
                 T.topRightCorner(k, b)   = F.transpose();
-                const auto      start    = std::chrono::steady_clock::now();
-                Eigen::MatrixXd W =
-                  solve_block(ksp, shifted.P, multiply(M, next));
+                const auto start         = std::chrono::steady_clock::now();
+                Block      w{solve_block(ksp, shifted.P, next.MW), {}};
                 ++block_solves;
                 seconds_solves += std::chrono::duration<double>(
                                     std::chrono::steady_clock::now() - start)
                                     .count();
-                const double          reference = largest_m_norm(M, W);
-                const Eigen::MatrixXd H         = orthogonalise(M, V, W);
+                w.MW                            = multiply(M, w.W);
+                const double          reference = largest_m_norm(w, comm);
+                const Eigen::MatrixXd H         = basis.orthogonalise(w);
                 const Eigen::MatrixXd D         = H.bottomRows(b);
                 T.bottomRightCorner(b, b)       = (D + D.transpose()) / 2.;
                 const Eigen::MatrixXd R =
-                  orthonormalise(M, V, W, reference, owned, seed);
-                next           = std::move(W);
+                  orthonormalise(basis, w, reference, owned, seed);
+                next           = std::move(w);
                 F              = Eigen::MatrixXd::Zero(b, k + b);
                 F.rightCols(b) = R;
               }
@@ -240,14 +368,14 @@ namespace squeal
               done = residual[i] <= tolerance * std::abs(theta[i]);
             if (done)
               {
-                multiply_in_place(V, Y.leftCols(c));
+                basis.combine(Y.leftCols(c));
                 std::vector<UndampedMode> modes(c);
                 for (Eigen::Index i = 0; i < c; ++i)
                   {
                     // theta descending: omega^2 ascending
                     modes[i].omega2 = {sigma + 1. / theta[i], 0.};
                     modes[i].re.reinit(owned, comm);
-                    set_local_part(modes[i].re, V.col(i));
+                    set_local_part(modes[i].re, basis.V().col(i));
                   }
                 return modes;
               }
@@ -258,7 +386,7 @@ namespace squeal
                 " Hz did not converge in 100 restarts (or the stiffness "
                 "has an eigenvalue below the shift)");
             // keep the largest Ritz pairs and go on from next
-            multiply_in_place(V, Y.leftCols(keep));
+            basis.combine(Y.leftCols(keep));
             T = theta.head(keep).asDiagonal();
             F = F * Y.leftCols(keep);
           }

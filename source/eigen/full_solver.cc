@@ -250,18 +250,15 @@ namespace squeal
           Phi.col(j) = internal::local_part(modes[j].re, owned);
           omega2[j]  = modes[j].omega2.real();
         }
-      if (eigensolver.krylov_schur())
-        {
-          // SLEPc's eigenvector purification, for all of them in one block:
-          // a step of inverse iteration x <- (K_s - sigma M)^-1 M x removes
-          // what the Krylov basis left along the other eigenvectors (the
-          // close doublets of a disc need it); it scales an eigenvector by
-          // 1 / (omega^2 - sigma), undone here (append() below
-          // M-orthonormalises them)
-          Phi =
-            internal::solve_block(eigensolver.solver(), K_s, multiply(M, Phi));
-          Phi *= (omega2.array() - sigma).matrix().asDiagonal();
-        }
+      // eigenvector purification, for all of them in one block (as
+      // solve_undamped() does for the reduced basis): a step of inverse
+      // iteration x <- (K_s - sigma M)^-1 M x removes what the Krylov
+      // basis left along the other eigenvectors (the close doublets of a
+      // disc need it after Krylov-Schur); it scales an eigenvector by
+      // 1 / (omega^2 - sigma), undone here (append() below
+      // M-orthonormalises them)
+      Phi = internal::solve_block(eigensolver.solver(), K_s, multiply(M, Phi));
+      Phi *= (omega2.array() - sigma).matrix().asDiagonal();
       // the modes live on in Phi (and in the caller's copy); the
       // eigensolver's basis is not needed
       if (symmetric_modes)

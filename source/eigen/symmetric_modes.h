@@ -35,14 +35,12 @@ namespace squeal
     namespace internal
     {
       // The symmetric eigensolver that BandOptions::symmetric_solver
-      // names; `auto`: block Lanczos when MUMPS's factors are out of core
-      // (one pass through them per block), Krylov-Schur otherwise
+      // names; `auto`: block Lanczos (one pass through the factors per
+      // block of vectors, in core and out of core)
       inline std::string
       symmetric_solver_for(const std::string &choice)
       {
-        if (choice != "auto")
-          return choice;
-        return factors_out_of_core() ? "block" : "slepc";
+        return choice == "auto" ? "block" : choice;
       }
 
       inline void
@@ -255,16 +253,20 @@ namespace squeal
       // The same by thick-restart block Lanczos on the shift-and-invert
       // operator OP = (K - sigma M)^-1 M in the M inner product, the
       // factorisation a DirectSolver (MUMPS Cholesky): each step applies
-      // OP to a block of up to 64 vectors with one KSPMatSolve, a single
-      // pass through the factors (out of core, read from disk once per
-      // block where Krylov-Schur and PARPACK read them once per vector).
-      // Full block reorthogonalisation (block classical Gram-Schmidt
-      // twice, then Cholesky QR twice), restarts keeping the wanted Ritz
-      // vectors and one block more (Krylov-Schur restarts, Stewart, SIAM
-      // J. Matrix Anal. Appl. 23 (2001), in their block form), Ritz pairs
-      // converged when ||OP x - theta x||_M <= tolerance theta. The basis
+      // OP to a block of vectors with one KSPMatSolve, a single pass
+      // through the factors (in core a solve costs about a quarter per
+      // column of a single one; out of core the factors are read from disk
+      // once per block where Krylov-Schur and PARPACK read them once per
+      // vector). Full block reorthogonalisation (block classical
+      // Gram-Schmidt twice, then Cholesky QR twice), restarts keeping the
+      // wanted Ritz vectors and one block more (Krylov-Schur restarts,
+      // Stewart, SIAM J. Matrix Anal. Appl. 23 (2001), in their block
+      // form), Ritz pairs converged when ||OP x - theta x||_M <= tolerance
+      // theta. In core the basis' mass products M V are kept beside it, so
+      // a step makes one sparse product (M of the new block); out of core
+      // (memory short) they are not, and a step makes three. The basis
       // holds at most max(2 wanted + 2 b, wanted + 3 b) vectors (b the
-      // block size). In block_lanczos.cc.
+      // block size, block_and_basis()). In block_lanczos.cc.
       class BlockModes
       {
       public:
@@ -290,13 +292,24 @@ namespace squeal
 
         // The block size and the largest basis for @p wanted modes of a
         // problem of size @p N (solve() uses them; held_vectors() counts
-        // them)
+        // them). In core about wanted / 12 (measured on the TriboBrake,
+        // 102 modes: blocks of 8 took 4.4 s, of 35 7.9 s, Krylov-Schur
+        // 13 s; more columns in all as the block grows, each cheaper);
+        // out of core about wanted / 3 (each block solve reads the
+        // factors from disk: fewer, larger blocks), at most 64.
         static std::pair<std::size_t, std::size_t>
-        block_and_basis(const std::size_t wanted, const std::size_t N)
+        block_and_basis(const std::size_t wanted,
+                        const std::size_t N,
+                        const bool        out_of_core)
         {
           const std::size_t c = wanted;
           const std::size_t b = std::max<std::size_t>(
-            1, std::min<std::size_t>({64, (c + 2) / 3 + 1, N / 4}));
+            1,
+            std::min<std::size_t>({64,
+                                   out_of_core ?
+                                     (c + 2) / 3 + 1 :
+                                     std::max<std::size_t>(4, (c + 2) / 12 + 1),
+                                   N / 4}));
           const std::size_t largest =
             std::min<std::size_t>(N - std::min(N, b),
                                   std::max(2 * c + 2 * b, c + 3 * b));
@@ -325,6 +338,10 @@ namespace squeal
                              const double       tolerance,
                              const std::string &choice)
           : name(symmetric_solver_for(choice))
+          , K(K)
+          , sigma(sigma)
+          , tolerance(tolerance)
+          , automatic(choice == "auto")
         {
           if (name == "arpack")
             arpack = std::make_unique<ArpackModes>(K, M, sigma, tolerance);
@@ -334,10 +351,26 @@ namespace squeal
             slepc = std::make_unique<SymmetricModes>(K, M, sigma, tolerance);
         }
 
-        // see SymmetricModes::solve()
+        // see SymmetricModes::solve(); under `auto`, a problem too small
+        // for a Lanczos basis of @p wanted modes (a few DoFs) goes to
+        // Krylov-Schur
         std::vector<UndampedMode>
         solve(const PETScMatrix &M, const unsigned int wanted, const double top)
         {
+          if (block && automatic)
+            {
+              const auto [b, largest] =
+                BlockModes::block_and_basis(wanted,
+                                            M.m(),
+                                            factors_out_of_core());
+              if (largest < wanted + b)
+                {
+                  block.reset();
+                  slepc =
+                    std::make_unique<SymmetricModes>(K, M, sigma, tolerance);
+                  name = "slepc";
+                }
+            }
           return arpack ? arpack->solve(M, wanted, top) :
                  block  ? block->solve(M, wanted, top) :
                           slepc->solve(M, wanted, top);
@@ -352,13 +385,6 @@ namespace squeal
                           slepc->solver();
         }
 
-        // Krylov-Schur's eigenvectors want a purification step
-        bool
-        krylov_schur() const
-        {
-          return slepc != nullptr;
-        }
-
         // frees Krylov-Schur's basis (the factorisation stays)
         void
         release_basis()
@@ -371,9 +397,9 @@ namespace squeal
         // once for @p wanted modes of a problem of size @p N, the returned
         // modes included: Krylov-Schur's default basis of max(2 nev, nev +
         // 15) vectors (nev = wanted + 2), PARPACK's 2 nev + 2 and its nev
-        // eigenvectors and three work vectors, block Lanczos's basis and
-        // four blocks (the next block, its mass product, the operator's
-        // result and its mass product)
+        // eigenvectors and three work vectors, block Lanczos's basis (and
+        // in core its mass products) and four blocks (the next block, its
+        // mass product, the operator's result and its mass product)
         static double
         held_vectors(const std::string &name,
                      const std::size_t  wanted,
@@ -384,8 +410,11 @@ namespace squeal
             return 2. * nev + 2. + nev + 3. + wanted;
           if (name == "block")
             {
-              const auto [b, largest] = BlockModes::block_and_basis(wanted, N);
-              return double(largest) + 4. * b + wanted;
+              const bool out_of_core = factors_out_of_core();
+              const auto [b, largest] =
+                BlockModes::block_and_basis(wanted, N, out_of_core);
+              return (out_of_core ? 1. : 2.) * double(largest) + 4. * b +
+                     wanted;
             }
           return std::min<double>(N, std::max(2. * nev, nev + 15.)) + wanted;
         }
@@ -404,9 +433,12 @@ namespace squeal
           return text.str();
         }
 
-        const std::string name;
+        std::string name;
 
       private:
+        const PETScMatrix              &K;
+        const double                    sigma, tolerance;
+        const bool                      automatic;
         std::unique_ptr<SymmetricModes> slepc;
         std::unique_ptr<ArpackModes>    arpack;
         std::unique_ptr<BlockModes>     block;

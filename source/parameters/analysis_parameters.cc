@@ -345,8 +345,8 @@ namespace squeal
                         method,
                         Patterns::Selection("full|reduced"),
                         "full: at every point, the symmetric modes counted "
-                        "by Sylvester inertia and found by SLEPc "
-                        "Krylov-Schur (MUMPS Cholesky), the damped "
+                        "by Sylvester inertia and found by the Symmetric "
+                        "eigensolver (MUMPS Cholesky), the damped "
                         "friction-coupled problem projected on them and "
                         "refined by Davidson to Residual tolerance; "
                         "reduced: modal basis with friction enrichment, "
@@ -406,13 +406,13 @@ namespace squeal
         "The eigensolver for the modes of the symmetric problem (the full "
         "solver's basis and each reduced-basis sample, as many as the "
         "inertia count gives), each on a MUMPS Cholesky factorisation of "
-        "K - sigma M: auto (block when MUMPS's factors are out of core, "
-        "Linear solver/Out-of-core factorisation, slepc otherwise), "
+        "K - sigma M: auto (block), "
         "slepc (SLEPc's Krylov-Schur, shift-and-invert), "
         "arpack (PARPACK's implicitly restarted Lanczos through deal.II) or "
         "block (squeal's thick-restart block Lanczos: one solve with a "
-        "block of up to 64 vectors per step, one pass through the factors "
-        "where the others make one per vector; for factors out of core). "
+        "block of vectors per step, one pass through the factors where the "
+        "others make one per vector: cheaper per vector in memory, and "
+        "read from disk once per block with the factors out of core). "
         "The results agree (cea_tribobrake_coarse).");
       prm.declare_entry(
         "Subspace products",

@@ -15,8 +15,10 @@
  *    of inertia; MUMPS through PETSc MatGetInertia). It is taken at
  *    (2 pi f_min)^2, (2 pi f_max)^2 and (2 pi b f_max)^2 (b: the basis
  *    factor, default 1.5).
- * 2. Symmetric modes. SLEPc Krylov-Schur on the symmetric-definite pencil
- *    with shift-and-invert at -(2 pi f_t)^2 (MUMPS Cholesky) is asked for
+ * 2. Symmetric modes. The eigensolver of BandOptions::symmetric_solver
+ *    (by default thick-restart block Lanczos; SLEPc Krylov-Schur or
+ *    PARPACK on request) on the symmetric-definite pencil with
+ *    shift-and-invert at -(2 pi f_t)^2 (MUMPS Cholesky) is asked for
  *    exactly as many eigenpairs as the count of step 1 puts below
  *    (2 pi b f_max)^2; the solve must return every one of them, or it fails.
  * 3. Projection. The damped friction-coupled problem is projected

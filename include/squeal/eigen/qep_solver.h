@@ -57,9 +57,8 @@ namespace squeal
       /// through deal.II's PArpackSolver), both shift-and-invert, or
       /// `block` (thick-restart block Lanczos on the shift-and-invert
       /// operator, blocks of up to 64 vectors, one pass through the
-      /// factors per block: for factors out of core), or `auto` (`block`
-      /// when factors_out_of_core(), memory_estimate.h, else `slepc`).
-      std::string symmetric_solver = "slepc";
+      /// factors per block), or `auto` (`block`).
+      std::string symmetric_solver = "auto";
       /// The full solver keeps the products M V, C V, K V of its subspace
       /// V (true: four n x r blocks, no sparse product to test a Ritz
       /// pair) or forms them when needed (false: one block).
