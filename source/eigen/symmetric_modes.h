@@ -352,8 +352,9 @@ namespace squeal
         }
 
         // see SymmetricModes::solve(); under `auto`, a problem too small
-        // for a Lanczos basis of @p wanted modes (a few DoFs) goes to
-        // Krylov-Schur
+        // for block Lanczos (its basis and a block more than half the
+        // space, where the Krylov space can run out: a model of a few
+        // hundred DoFs) goes to Krylov-Schur
         std::vector<UndampedMode>
         solve(const PETScMatrix &M, const unsigned int wanted, const double top)
         {
@@ -363,7 +364,7 @@ namespace squeal
                 BlockModes::block_and_basis(wanted,
                                             M.m(),
                                             factors_out_of_core());
-              if (largest < wanted + b)
+              if (largest < wanted + b || 2 * (largest + b) > M.m())
                 {
                   block.reset();
                   slepc =
