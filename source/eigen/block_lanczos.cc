@@ -58,21 +58,6 @@ namespace squeal
           Eigen::MatrixXd W, MW;
         };
 
-        // B <- B T in place (B n x m, T m x k, k <= m: B's first k
-        // columns), a block of rows at a time
-        void
-        combine_in_place(Eigen::Ref<Eigen::MatrixXd> B,
-                         const Eigen::MatrixXd      &T)
-        {
-          constexpr Eigen::Index height = 1024;
-          for (Eigen::Index i = 0; i < B.rows(); i += height)
-            {
-              const Eigen::Index    h       = std::min(height, B.rows() - i);
-              const Eigen::MatrixXd product = B.middleRows(i, h) * T;
-              B.block(i, 0, h, T.cols())    = product;
-            }
-        }
-
         // The Lanczos basis V, M-orthonormal, and with @p stored its mass
         // products M V, updated with V. With them a step needs one sparse
         // product, M W of the operator's new block: every projection
@@ -161,9 +146,9 @@ namespace squeal
           void
           combine(const Eigen::MatrixXd &Y)
           {
-            combine_in_place(V_storage.leftCols(k), Y);
+            multiply_into_leading_columns(V_storage.leftCols(k), Y);
             if (stored)
-              combine_in_place(MV_storage.leftCols(k), Y);
+              multiply_into_leading_columns(MV_storage.leftCols(k), Y);
             k = Y.cols();
           }
 

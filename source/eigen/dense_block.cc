@@ -395,6 +395,16 @@ namespace squeal
       void
       multiply_in_place(Eigen::MatrixXd &B, const Eigen::MatrixXd &T)
       {
+        multiply_into_leading_columns(B, T);
+        // the leading columns are the front of the column-major storage:
+        // shrinking them keeps the values (realloc, no copy)
+        B.conservativeResize(Eigen::NoChange, T.cols());
+      }
+
+      void
+      multiply_into_leading_columns(Eigen::Ref<Eigen::MatrixXd> B,
+                                    const Eigen::MatrixXd      &T)
+      {
         if (T.rows() != B.cols() || T.cols() > B.cols())
           throw std::logic_error(
             "dense block: B T in place needs T with B's columns as rows "
@@ -408,9 +418,6 @@ namespace squeal
             const Eigen::MatrixXd product = B.middleRows(i, h) * T;
             B.block(i, 0, h, T.cols())    = product;
           }
-        // the leading columns are the front of the column-major storage:
-        // shrinking them keeps the values (realloc, no copy)
-        B.conservativeResize(Eigen::NoChange, T.cols());
       }
 
       struct PartsProduct::Data

@@ -107,6 +107,15 @@ namespace squeal
       multiply_in_place(Eigen::MatrixXd &B, const Eigen::MatrixXd &T);
 
       /**
+       * The same into the first k columns of @p B, whose size stays
+       * (B n x m, a view such as a block's leading columns; T m x k).
+       * @throws std::logic_error if T's size does not fit.
+       */
+      void
+      multiply_into_leading_columns(Eigen::Ref<Eigen::MatrixXd> B,
+                                    const Eigen::MatrixXd      &T);
+
+      /**
        * Products of a model's parts with dense blocks: sum_k c_k A_k B for
        * several coefficient vectors c at once (M(p) B, C(p) B and K(p) B of
        * a point p without forming M(p), C(p) or K(p)), one pass over each
