@@ -21,12 +21,20 @@ namespace squeal
       {
         using View = Eigen::Map<Eigen::MatrixXd>;
 
-        // view := X, whose memory @p storage takes over
+        // view := X, copied into @p storage if it has room (Subspace::
+        // reserve()), else its memory taken over by @p storage
         void
         take(View &view, Eigen::MatrixXd &storage, Eigen::MatrixXd &&X)
         {
-          storage = std::move(X);
-          new (&view) View(storage.data(), storage.rows(), storage.cols());
+          const Eigen::Index n = X.rows(), r = X.cols();
+          if (storage.rows() == n && storage.cols() >= r)
+            {
+              storage.leftCols(r) = X;
+              X.resize(0, 0);
+            }
+          else
+            storage = std::move(X);
+          new (&view) View(storage.data(), n, r);
         }
 
         // view := [view Y], Y freed: in place while @p storage has room for
@@ -245,23 +253,23 @@ namespace squeal
                                    .diagonal()
                                    .cwiseMax(0.));
         };
+        // two passes ("twice is enough"): the second removes what the
+        // rounding of the first left along V; then one M product
         Eigen::VectorXd in_span = Eigen::VectorXd::Zero(T.cols());
         if (V.cols() > 0)
-          in_span = remove_span(T);
+          {
+            in_span = remove_span(T);
+            in_span += remove_span(T);
+          }
         Eigen::MatrixXd MT = mass_times(T);
         // the squared M-norms of what is left, 1 x m
         Eigen::MatrixXd remainder = T.cwiseProduct(MT).colwise().sum();
         sum_over_ranks(remainder, comm);
-        // the columns kept, and the positions among them of those that
-        // need a second pass
-        std::vector<int> keep, again;
+        // the columns kept
+        std::vector<int> keep;
         for (int j = 0; j < T.cols(); ++j)
           if (remainder(0, j) > 1e-16 * (remainder(0, j) + in_span[j]))
-            {
-              if (remainder(0, j) < in_span[j])
-                again.push_back(keep.size());
-              keep.push_back(j);
-            }
+            keep.push_back(j);
         if (keep.empty())
           return;
         // the kept columns, in place (memory: the blocks are n x 2 k)
@@ -273,20 +281,6 @@ namespace squeal
             }
         T.conservativeResize(Eigen::NoChange, keep.size());
         MT.conservativeResize(Eigen::NoChange, keep.size());
-        if (!again.empty())
-          {
-            // the second pass, on the columns that need it
-            Eigen::MatrixXd X(T.rows(), again.size());
-            for (unsigned int a = 0; a < again.size(); ++a)
-              X.col(a) = T.col(again[a]);
-            remove_span(X);
-            const Eigen::MatrixXd MX = mass_times(X);
-            for (unsigned int a = 0; a < again.size(); ++a)
-              {
-                T.col(again[a])  = X.col(a);
-                MT.col(again[a]) = MX.col(a);
-              }
-          }
         Eigen::MatrixXd gram_k = T.transpose() * MT;
         sum_over_ranks(gram_k, comm);
         Eigen::MatrixXd S;
@@ -386,6 +380,23 @@ namespace squeal
             grow(Kr, multiply(K, N), project(multiply(Kt->t, N), V));
           }
         extend(V, storage[0], N);
+      }
+
+      void
+      Subspace::reserve(const Eigen::Index rows, const Eigen::Index columns)
+      {
+        const std::array<View *, 4> views{{&V, &WM, &WC, &WK}};
+        for (unsigned int k = 0; k < (stored ? 4 : 1); ++k)
+          {
+            Eigen::MatrixXd   &memory = storage[k];
+            const Eigen::Index used   = views[k]->cols();
+            if (memory.cols() >= columns && memory.rows() == rows)
+              continue;
+            if (used > 0 && memory.rows() != rows)
+              throw std::logic_error("Subspace::reserve: wrong row count");
+            memory.conservativeResize(rows, columns);
+            new (views[k]) View(memory.data(), rows, used);
+          }
       }
 
       // The relative residuals of the Ritz pairs (V q, lambda) on the full

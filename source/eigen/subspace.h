@@ -183,12 +183,23 @@ namespace squeal
                           const physics::MatrixParts::ModalDamping &modal);
 
         /**
-         * Appends the part of the n x m block T M-orthogonal to V: a pass
-         * of T -= V (V^T M V)^-1 V^T M T, exact whatever V's
-         * orthonormality, and a second one for the columns that lost more
-         * than half their squared M-norm to it (Kahan's "twice is
-         * enough"); columns whose remainder is below 1e-8 of their M-norm
-         * are dropped, the rest M-orthonormalised among themselves (a first
+         * Room for @p columns columns of @p rows local rows in V (and in
+         * M V, C V and K V with stored products), so that appending up to
+         * that many copies no block; the columns in use are kept.
+         * @throws std::logic_error if @p rows is not V's local row count.
+         */
+        void
+        reserve(const Eigen::Index rows, const Eigen::Index columns);
+
+        /**
+         * Appends the part of the n x m block T M-orthogonal to V: two
+         * passes of T -= V (V^T M V)^-1 V^T M T with the stored M V (or
+         * one M product each without), exact whatever V's
+         * orthonormality (the second removes what the first's rounding
+         * left: "twice is enough", Giraud et al. 2005), then one M
+         * product of what is left; columns whose remainder is below 1e-8
+         * of their M-norm are dropped, the rest M-orthonormalised among
+         * themselves (a first
          * block of nearly M-orthonormal @p modes by a Cholesky factor of
          * its Gram matrix, which keeps them nearly as they are; otherwise
          * by orthonormalising_transform, which drops dependent directions).

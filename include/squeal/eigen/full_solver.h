@@ -32,8 +32,14 @@
  * 4. Refinement (block Davidson). The residual r of every Ritz pair in the
  *    band whose relative residual
  *    ||r|| / (|lambda|^2 ||M x|| + |lambda| ||C x|| + ||K x||) exceeds the
- *    tolerance is preconditioned by P^-1 and added to the subspace, until
- *    every pair is below it or the round limit is reached. With
+ *    tolerance gives two new directions, the real and imaginary parts of
+ *    (P^-1 + s P^-1 M P^-1) r with s = (2 pi f_t)^2 - lambda^2: the first
+ *    two terms of the Neumann series of (K_s + lambda^2 M)^-1 = (P - s M)^-1,
+ *    the pair's inverse iteration without friction and damping (the error
+ *    left in the modes above the basis falls by (omega / omega_i)^4 a
+ *    round; with P^-1 r alone, by (omega / omega_i)^2: on the TriboBrake
+ *    5 rounds instead of 8), until every pair is below it or the round
+ *    limit is reached. With
  *    BandOptions::store_products (the default) the residuals come from the
  *    stored products M V, C V, K V of the subspace V, so a round's sparse
  *    work is the new block's products only; without, only V is kept (a
