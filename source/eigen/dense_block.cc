@@ -612,6 +612,71 @@ namespace squeal
         return result;
       }
 
+      PartsProduct::Skew
+      PartsProduct::skew_times(const physics::MatrixParts::Coefficients &c,
+                               Eigen::Ref<const Eigen::MatrixXd> N) const
+      {
+        const Data &d = *data;
+        if (c.size() != d.parts.size())
+          throw std::logic_error(
+            "PartsProduct::skew_times: one coefficient per part");
+        Skew                      result;
+        std::vector<int>          position(d.n_local, -1);
+        std::vector<unsigned int> skew;
+        for (unsigned int k = 0; k < d.parts.size(); ++k)
+          if (d.has_transpose[k] && c[k] != 0.)
+            {
+              skew.push_back(k);
+              for (const auto *p : {&d.parts[k], &d.transposed[k]})
+                for (const int i : p->rows)
+                  position[i] = 0;
+            }
+        result.any = !skew.empty();
+        if (!result.any)
+          return result;
+        for (int i = 0; i < d.n_local; ++i)
+          if (position[i] == 0)
+            {
+              position[i] = result.rows.size();
+              result.rows.push_back(i);
+            }
+        result.values = Eigen::MatrixXd::Zero(result.rows.size(), N.cols());
+        constexpr Eigen::Index width = 64;
+        for (Eigen::Index c0 = 0; c0 < N.cols(); c0 += width)
+          {
+            const Eigen::Index w = std::min(width, N.cols() - c0);
+            RowBlock           extended(d.n_local + d.n_ghost, w);
+            {
+              const RowBlock local        = N.middleCols(c0, w);
+              extended.topRows(d.n_local) = local;
+              if (d.ghosts)
+                extended.bottomRows(d.n_ghost) = d.ghosts->gather(local);
+            }
+            for (const unsigned int k : skew)
+              for (const bool transposed : {false, true})
+                {
+                  const Data::Part &p =
+                    transposed ? d.transposed[k] : d.parts[k];
+                  const double a = transposed ? -c[k] : c[k];
+                  if (p.rows.empty())
+                    continue;
+                  const Eigen::Map<
+                    const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>
+                                 A(p.rows.size(),
+                      extended.rows(),
+                      p.values.size(),
+                      p.outer.data(),
+                      p.inner.data(),
+                      p.values.data());
+                  const RowBlock P = A * extended;
+                  for (std::size_t r = 0; r < p.rows.size(); ++r)
+                    result.values.block(position[p.rows[r]], c0, 1, w) +=
+                      a * P.row(r);
+                }
+          }
+        return result;
+      }
+
       std::vector<int>
       nonzero_rows(const PETScMatrix &A)
       {

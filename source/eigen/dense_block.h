@@ -156,6 +156,28 @@ namespace squeal
           Eigen::Ref<const Eigen::MatrixXd>                              B,
           const bool transposed = false) const;
 
+        /** ((A - A^T) N)(rows, :) for A = sum_k c[k] A_k (skew_times()). */
+        struct Skew
+        {
+          /// false when every part with c[k] != 0 is symmetric (then A - A^T =
+          /// 0)
+          bool any = false;
+          /// the local rows where (A - A^T) N can be nonzero, ascending
+          std::vector<int> rows;
+          /// ((A - A^T) N)(rows, :), rows.size() x m
+          Eigen::MatrixXd values;
+        };
+
+        /**
+         * (A - A^T) N on the rows of the parts that are not symmetric (the
+         * friction parts: their rows and columns) with c[k] != 0, for
+         * A = sum_k c[k] A_k and the locally owned rows of an n x m block
+         * N (collective; the same Skew::any on every rank).
+         */
+        Skew
+        skew_times(const physics::MatrixParts::Coefficients &c,
+                   Eigen::Ref<const Eigen::MatrixXd>         N) const;
+
       private:
         struct Data;
         std::unique_ptr<Data> data;

@@ -337,6 +337,29 @@ namespace squeal
           A << Ar, project(V, AN), lower, project(N, AN);
           Ar.swap(A);
         };
+        // the same for A = sum_k c[k] A_k + (symmetric modal damping) from
+        // the parts: N^T A V = (V^T A N)^T - ((A - A^T) N)^T V, whose second
+        // term lives on the friction parts' rows only (a product with a few
+        // rows of V instead of one with the whole stored A V)
+        const auto grow_from_parts =
+          [&](Eigen::MatrixXd                          &Ar,
+              const Eigen::MatrixXd                    &AN,
+              const physics::MatrixParts::Coefficients &c) {
+            const int             r = V.cols(), q = N.cols();
+            const Eigen::MatrixXd upper = project(V, AN);
+            Eigen::MatrixXd       lower = upper.transpose();
+            const auto            skew  = parts->skew_times(c, N);
+            if (skew.any)
+              {
+                Eigen::MatrixXd x =
+                  skew.values.transpose() * V(skew.rows, Eigen::all);
+                sum_over_ranks(x, comm);
+                lower -= x;
+              }
+            Eigen::MatrixXd A(r + q, r + q);
+            A << Ar, upper, lower, project(N, AN);
+            Ar.swap(A);
+          };
         // the same for M: N^T M V = (V^T M N)^T
         const auto grow_mass = [&](const Eigen::MatrixXd &MN) {
           const int             r = V.cols(), q = N.cols();
@@ -350,8 +373,16 @@ namespace squeal
             auto             CK = damping_and_stiffness_times(N);
             Eigen::MatrixXd &NC = CK[0], &NK = CK[1];
             grow_mass(NM);
-            grow(Cr, NC, project(N, WC));
-            grow(Kr, NK, project(N, WK));
+            if (parts)
+              {
+                grow_from_parts(Cr, NC, coefficients.damping);
+                grow_from_parts(Kr, NK, coefficients.stiffness);
+              }
+            else
+              {
+                grow(Cr, NC, project(N, WC));
+                grow(Kr, NK, project(N, WK));
+              }
             extend(WM, storage[1], NM);
             extend(WC, storage[2], NC);
             extend(WK, storage[3], NK);
