@@ -12,7 +12,8 @@
 // as zeros (a part on the common pattern), a part on its own pattern of
 // 12 scattered rows with long-range couplings, and an empty part; two
 // coefficient vectors, one of which skips a part, and the transposed
-// product of the part that is not symmetric. The same product added
+// product of the part that is not symmetric, and the skew part (A - A^T) B
+// on its rows (PartsProduct::skew_times). The same product added
 // to a block with values (multiply_add), chosen rows of it from a
 // row-major block (RowProduct, as the reduced basis' projection forms
 // them), and B T formed in place (multiply_in_place) against B T.
@@ -271,6 +272,44 @@ main(int argc, char **argv)
                         0.,
                         1e-13,
                         scale);
+      // the skew part (A - A^T) B of c1's sum on its rows: the friction
+      // part's, the other parts being taken as symmetric (as a model
+      // assembles them; this test's first part is not)
+      {
+        const auto skew =
+          product.skew_times(c1, B.middleRows(first, last - first));
+        const Eigen::MatrixXd F    = c1[1] * dense_parts[1];
+        const Eigen::MatrixXd full = (F - F.transpose()) * B;
+        // the local rows outside skew.rows must be zero in the dense result
+        Eigen::MatrixXd mine = Eigen::MatrixXd::Zero(last - first, columns);
+        for (unsigned int a = 0; a < skew.rows.size(); ++a)
+          mine.row(skew.rows[a]) = skew.values.row(a);
+        const Eigen::MatrixXd reference = full.middleRows(first, last - first);
+        const double          skew_scale =
+          Utilities::MPI::max(reference.cwiseAbs().maxCoeff(), MPI_COMM_WORLD);
+        const double skew_error =
+          Utilities::MPI::max((mine - reference).cwiseAbs().maxCoeff(),
+                              MPI_COMM_WORLD);
+        const unsigned int n_rows =
+          Utilities::MPI::sum(static_cast<unsigned int>(skew.rows.size()),
+                              MPI_COMM_WORLD);
+        test_tools::check_true(name + "the skew part is there", skew.any);
+        test_tools::check_true(name + "the skew part is not zero",
+                               skew_scale > 1.);
+        // the friction part's 12 rows and their columns, not every row
+        test_tools::check_true(name + "the skew part's rows are few",
+                               n_rows > 0 && n_rows < n / 2);
+        test_tools::check(name + "(A - A^T) B against the dense sum",
+                          skew_error,
+                          0.,
+                          1e-13,
+                          skew_scale);
+        const std::vector<double> symmetric{1., 0., 2.};
+        test_tools::check_true(
+          name + "no skew part without the friction part",
+          !product.skew_times(symmetric, B.middleRows(first, last - first))
+             .any);
+      }
     }
   return test_tools::finish();
 }

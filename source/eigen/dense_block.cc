@@ -435,6 +435,36 @@ namespace squeal
         std::vector<bool>                has_transpose;
         int                              n_local = 0, n_ghost = 0;
         std::unique_ptr<const GhostRows> ghosts;
+
+        // columns [c0, c0 + w) of B's local rows and their ghost rows after
+        // them (collective)
+        RowBlock
+        extended(Eigen::Ref<const Eigen::MatrixXd> B,
+                 const Eigen::Index                c0,
+                 const Eigen::Index                w) const
+        {
+          RowBlock       result(n_local + n_ghost, w);
+          const RowBlock local    = B.middleCols(c0, w);
+          result.topRows(n_local) = local;
+          if (ghosts)
+            result.bottomRows(n_ghost) = ghosts->gather(local);
+          return result;
+        }
+
+        // A part times an extended block: its nonzero rows
+        static RowBlock
+        times(const Part &p, const RowBlock &extended)
+        {
+          const Eigen::Map<
+            const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>
+            A(p.rows.size(),
+              extended.rows(),
+              p.values.size(),
+              p.outer.data(),
+              p.inner.data(),
+              p.values.data());
+          return A * extended;
+        }
       };
 
       PartsProduct::PartsProduct(const physics::MatrixParts &model)
@@ -569,14 +599,8 @@ namespace squeal
         constexpr Eigen::Index width = 64;
         for (Eigen::Index c0 = 0; c0 < B.cols(); c0 += width)
           {
-            const Eigen::Index w = std::min(width, B.cols() - c0);
-            RowBlock           extended(d.n_local + d.n_ghost, w);
-            {
-              const RowBlock local        = B.middleCols(c0, w);
-              extended.topRows(d.n_local) = local;
-              if (d.ghosts)
-                extended.bottomRows(d.n_ghost) = d.ghosts->gather(local);
-            }
+            const Eigen::Index    w        = std::min(width, B.cols() - c0);
+            const RowBlock        extended = d.extended(B, c0, w);
             std::vector<RowBlock> sums(q, RowBlock::Zero(d.n_local, w));
             for (unsigned int k = 0; k < d.parts.size(); ++k)
               {
@@ -588,15 +612,7 @@ namespace squeal
                   used = used || (*c[i])[k] != 0.;
                 if (!used || p.rows.empty())
                   continue;
-                const Eigen::Map<
-                  const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>
-                               A(p.rows.size(),
-                    extended.rows(),
-                    p.values.size(),
-                    p.outer.data(),
-                    p.inner.data(),
-                    p.values.data());
-                const RowBlock P = A * extended;
+                const RowBlock P = Data::times(p, extended);
                 for (unsigned int i = 0; i < q; ++i)
                   {
                     const double a = (*c[i])[k];
@@ -644,14 +660,8 @@ namespace squeal
         constexpr Eigen::Index width = 64;
         for (Eigen::Index c0 = 0; c0 < N.cols(); c0 += width)
           {
-            const Eigen::Index w = std::min(width, N.cols() - c0);
-            RowBlock           extended(d.n_local + d.n_ghost, w);
-            {
-              const RowBlock local        = N.middleCols(c0, w);
-              extended.topRows(d.n_local) = local;
-              if (d.ghosts)
-                extended.bottomRows(d.n_ghost) = d.ghosts->gather(local);
-            }
+            const Eigen::Index w        = std::min(width, N.cols() - c0);
+            const RowBlock     extended = d.extended(N, c0, w);
             for (const unsigned int k : skew)
               for (const bool transposed : {false, true})
                 {
@@ -660,15 +670,7 @@ namespace squeal
                   const double a = transposed ? -c[k] : c[k];
                   if (p.rows.empty())
                     continue;
-                  const Eigen::Map<
-                    const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>
-                                 A(p.rows.size(),
-                      extended.rows(),
-                      p.values.size(),
-                      p.outer.data(),
-                      p.inner.data(),
-                      p.values.data());
-                  const RowBlock P = A * extended;
+                  const RowBlock P = Data::times(p, extended);
                   for (std::size_t r = 0; r < p.rows.size(); ++r)
                     result.values.block(position[p.rows[r]], c0, 1, w) +=
                       a * P.row(r);

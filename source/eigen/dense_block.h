@@ -170,9 +170,10 @@ namespace squeal
 
         /**
          * (A - A^T) N on the rows of the parts that are not symmetric (the
-         * friction parts: their rows and columns) with c[k] != 0, for
-         * A = sum_k c[k] A_k and the locally owned rows of an n x m block
-         * N (collective; the same Skew::any on every rank).
+         * friction parts: their rows and columns; every other kind of part
+         * is symmetric as physics::MatrixParts assembles it, and taken so) with
+         * c[k] != 0, for A = sum_k c[k] A_k and the locally owned rows of an n
+         * x m block N (collective; the same Skew::any on every rank).
          */
         Skew
         skew_times(const physics::MatrixParts::Coefficients &c,
