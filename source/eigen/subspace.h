@@ -203,6 +203,11 @@ namespace squeal
          * block of nearly M-orthonormal @p modes by a Cholesky factor of
          * its Gram matrix, which keeps them nearly as they are; otherwise
          * by orthonormalising_transform, which drops dependent directions).
+         * The projected matrices grow by V^T A N, N^T A N and N^T A V; with
+         * stored products and #parts, N^T A V = (V^T A N)^T - ((A - A^T)
+         * N)^T V for C and K, the second term on the friction parts' rows
+         * only (PartsProduct::skew_times), instead of a product with the
+         * stored A V.
          * @throws std::runtime_error if a first block of @p modes is
          * linearly dependent, or if PETSc fails.
          */
