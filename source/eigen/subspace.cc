@@ -193,22 +193,6 @@ namespace squeal
         return {{std::move(CK[0]), std::move(CK[1])}};
       }
 
-      std::array<Eigen::MatrixXd, 2>
-      Subspace::transposed_damping_and_stiffness_times(
-        Eigen::Ref<const Eigen::MatrixXd> N) const
-      {
-        if (!parts)
-          throw std::logic_error(
-            "Subspace: C^T N and K^T N need the model's parts");
-        auto CK =
-          parts->multiply({&coefficients.damping, &coefficients.stiffness},
-                          N,
-                          true);
-        // the modal damping U diag(d) U^T is symmetric
-        add_modal_damping(CK[0], N);
-        return {{std::move(CK[0]), std::move(CK[1])}};
-      }
-
       std::array<Eigen::MatrixXd, 3>
       Subspace::products(const Eigen::MatrixXd &Q) const
       {
@@ -328,24 +312,25 @@ namespace squeal
               }
             return;
           }
-        // [Ar, V^T A N; lower, N^T A N] with lower = N^T A V
+        // [Ar, upper; lower, N^T A N] with upper = V^T A N and lower =
+        // N^T A V
         const auto grow = [&](Eigen::MatrixXd       &Ar,
                               const Eigen::MatrixXd &AN,
+                              const Eigen::MatrixXd &upper,
                               const Eigen::MatrixXd &lower) {
           const int       r = V.cols(), q = N.cols();
           Eigen::MatrixXd A(r + q, r + q);
-          A << Ar, project(V, AN), lower, project(N, AN);
+          A << Ar, upper, lower, project(N, AN);
           Ar.swap(A);
         };
         // the same for A = sum_k c[k] A_k + (symmetric modal damping) from
         // the parts: N^T A V = (V^T A N)^T - ((A - A^T) N)^T V, whose second
         // term lives on the friction parts' rows only (a product with a few
-        // rows of V instead of one with the whole stored A V)
+        // rows of V instead of one with the whole A V or A^T N)
         const auto grow_from_parts =
           [&](Eigen::MatrixXd                          &Ar,
               const Eigen::MatrixXd                    &AN,
               const physics::MatrixParts::Coefficients &c) {
-            const int             r = V.cols(), q = N.cols();
             const Eigen::MatrixXd upper = project(V, AN);
             Eigen::MatrixXd       lower = upper.transpose();
             const auto            skew  = parts->skew_times(c, N);
@@ -356,9 +341,7 @@ namespace squeal
                 sum_over_ranks(x, comm);
                 lower -= x;
               }
-            Eigen::MatrixXd A(r + q, r + q);
-            A << Ar, upper, lower, project(N, AN);
-            Ar.swap(A);
+            grow(Ar, AN, upper, lower);
           };
         // the same for M: N^T M V = (V^T M N)^T
         const auto grow_mass = [&](const Eigen::MatrixXd &MN) {
@@ -380,8 +363,8 @@ namespace squeal
               }
             else
               {
-                grow(Cr, NC, project(N, WC));
-                grow(Kr, NK, project(N, WK));
+                grow(Cr, NC, project(V, NC), project(N, WC));
+                grow(Kr, NK, project(V, NK), project(N, WK));
               }
             extend(WM, storage[1], NM);
             extend(WC, storage[2], NC);
@@ -389,13 +372,11 @@ namespace squeal
           }
         else if (parts)
           {
-            // N^T A V = (A^T N)^T V, A^T N from the parts
             grow_mass(NM);
             NM.resize(0, 0);
-            auto CK  = damping_and_stiffness_times(N);
-            auto CKt = transposed_damping_and_stiffness_times(N);
-            grow(Cr, CK[0], project(CKt[0], V));
-            grow(Kr, CK[1], project(CKt[1], V));
+            const auto CK = damping_and_stiffness_times(N);
+            grow_from_parts(Cr, CK[0], coefficients.damping);
+            grow_from_parts(Kr, CK[1], coefficients.stiffness);
           }
         else
           {
@@ -407,8 +388,9 @@ namespace squeal
               }
             grow_mass(NM);
             NM.resize(0, 0);
-            grow(Cr, damping_times(N), project(damping_times(Ct->t, N), V));
-            grow(Kr, multiply(K, N), project(multiply(Kt->t, N), V));
+            const Eigen::MatrixXd CN = damping_times(N), KN = multiply(K, N);
+            grow(Cr, CN, project(V, CN), project(damping_times(Ct->t, N), V));
+            grow(Kr, KN, project(V, KN), project(multiply(Kt->t, N), V));
           }
         extend(V, storage[0], N);
       }

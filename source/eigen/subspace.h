@@ -99,9 +99,8 @@ namespace squeal
          * With parts (use_parts()): C N and K N of new blocks and Ritz
          * vectors from the model's parts and the point's coefficients, one
          * pass over the parts instead of products with C and K, which
-         * are then not read (without stored products the projection's
-         * new rows N^T A V = (A^T N)^T V come from the parts too, and
-         * #Ct, #Kt are not made).
+         * are then not read (#Ct, #Kt are not made: append() forms the
+         * projection's new rows from the parts, see there).
          */
         const PartsProduct               *parts = nullptr;
         physics::MatrixParts::Combination coefficients;
@@ -160,15 +159,6 @@ namespace squeal
         Eigen::MatrixXd
         damping_times(Eigen::Ref<const Eigen::MatrixXd> N) const;
 
-        /**
-         * C^T N and K^T N from #parts (n x m each for the local rows of an
-         * n x m N).
-         * @throws std::logic_error without parts.
-         */
-        std::array<Eigen::MatrixXd, 2>
-        transposed_damping_and_stiffness_times(
-          Eigen::Ref<const Eigen::MatrixXd> N) const;
-
         /** M V Q, C V Q and K V Q (n x columns of the r x m block Q). */
         std::array<Eigen::MatrixXd, 3>
         products(const Eigen::MatrixXd &Q) const;
@@ -204,10 +194,10 @@ namespace squeal
          * its Gram matrix, which keeps them nearly as they are; otherwise
          * by orthonormalising_transform, which drops dependent directions).
          * The projected matrices grow by V^T A N, N^T A N and N^T A V; with
-         * stored products and #parts, N^T A V = (V^T A N)^T - ((A - A^T)
-         * N)^T V for C and K, the second term on the friction parts' rows
-         * only (PartsProduct::skew_times), instead of a product with the
-         * stored A V.
+         * #parts, N^T A V = (V^T A N)^T - ((A - A^T) N)^T V for C and K,
+         * the second term on the friction parts' rows only
+         * (PartsProduct::skew_times), instead of a product with the stored
+         * A V or with the transposed parts.
          * @throws std::runtime_error if a first block of @p modes is
          * linearly dependent, or if PETSc fails.
          */
