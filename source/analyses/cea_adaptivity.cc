@@ -622,7 +622,7 @@ namespace squeal
       return true;
     }
 
-    // One h-refinement of the adaptive cycles: Kelly's indicator on the
+    // One h-refinement of the adaptive cycles: the error indicator on the
     // modes PAIRS that drive it (those flagged in ABOVE, or all when it is
     // empty; each mode's squared field scaled to WEIGHTS^2 when given) marks
     // Mesh/Refinement fraction of the cells.
@@ -652,7 +652,7 @@ namespace squeal
     // Mesh/Frequency tolerance): the first sweep point by the full solver
     // on each mesh, the relative change of each mode's frequency from the
     // previous mesh (the same mode found by its shape) printed and written
-    // to adaptive_cycles.csv, then Kelly's indicator on the modes marks
+    // to adaptive_cycles.csv, then the error indicator on the modes marks
     // Mesh/Refinement fraction of the cells. The change between meshes is
     // not an error estimate: near a lock-in (an exceptional point, where
     // frequencies move like the square root of a perturbation) it

@@ -1,6 +1,6 @@
-// Where the discretisation error of the CEA's modes sits: Kelly's
-// indicator on the modes of a sweep point (mesh_error.vtu, mesh_error.csv),
-// which also drives the adaptive refinement.
+// Where the discretisation error of the CEA's modes sits: Kelly's or the
+// traction-jump indicator on the modes of a sweep point (mesh_error.vtu,
+// mesh_error.csv), which also drives the adaptive refinement.
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
@@ -14,6 +14,7 @@
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/mac.h>
 #include <squeal/io/output_directory.h>
+#include <squeal/physics/error_indicator.h>
 
 #include <algorithm>
 #include <array>
@@ -31,12 +32,49 @@ namespace squeal
   {
     using namespace dealii;
 
-    // Kelly's estimator on the real and imaginary parts of the modes PAIRS,
-    // each scaled to unit kinetic norm, squared and summed per cell (see
-    // write_error_indicator()). The estimator takes a batch of vectors in
-    // one pass over the faces, so the mapped face values (MappingQ of the
-    // element's degree on curved cells: most of its cost) are computed once
-    // per batch instead of once per vector.
+    namespace
+    {
+      // the traction-jump indicator of SOLUTIONS with the scene's laws at
+      // the point P (physics/error_indicator.h)
+      void
+      traction_jump_estimate(
+        const physics::StructuralModel                  &model,
+        const parameters::ScalarPoint                   &p,
+        const std::vector<const physics::PETScVector *> &solutions,
+        std::vector<Vector<float>>                      &eta)
+      {
+        const scene::Scene &scene = *model.scene;
+        physics::traction_jump_indicator(
+          model.mapping,
+          model.dof_handler,
+          [&](const types::material_id id,
+              const Point<3>          &x,
+              const Tensor<2, 3>      &G) {
+            const scene::Body          &body = scene.body(id);
+            const SymmetricTensor<2, 3> eps  = symmetrize(G);
+            if (body.law.anisotropic)
+              return SymmetricTensor<2, 3>(scene.stiffness_tensor(id, x, p) *
+                                           eps);
+            const auto [lambda, mu] =
+              physics::lame_constants(scene.youngs_modulus(id, p),
+                                      body.material.poisson_ratio);
+            return SymmetricTensor<2, 3>(
+              lambda * trace(eps) * unit_symmetric_tensor<3>() + 2. * mu * eps);
+          },
+          [&](const types::material_id id) {
+            return scene.youngs_modulus(id, p);
+          },
+          solutions,
+          eta);
+      }
+    } // namespace
+
+    // The error indicator (Mesh/Error indicator) on the real and imaginary
+    // parts of the modes PAIRS, each scaled to unit kinetic norm, squared
+    // and summed per cell (see write_error_indicator()). Both estimators
+    // take a batch of vectors in one pass over the faces, so the mapped face
+    // values (MappingQ of the element's degree on curved cells: most of its
+    // cost) are computed once per batch instead of once per vector.
     Vector<double>
     ComplexEigenvalueAnalysis::mode_indicator(
       const std::vector<eigen::EigenPair> &pairs,
@@ -90,17 +128,30 @@ namespace squeal
             }
           if (solutions.empty())
             continue;
-          std::vector<Vector<float>>   eta(solutions.size(),
+          std::vector<Vector<float>> eta(solutions.size(),
                                          Vector<float>(n_cells));
-          std::vector<Vector<float> *> eta_of;
-          for (Vector<float> &e : eta)
-            eta_of.push_back(&e);
-          KellyErrorEstimator<3>::estimate(model->mapping,
-                                           model->dof_handler,
-                                           QGauss<2>(model->fe.degree + 1),
-                                           {},
-                                           solutions,
-                                           eta_of);
+          if (prm.mesh.error_indicator == "traction jump")
+            traction_jump_estimate(*model, values, solutions, eta);
+          else
+            {
+              std::vector<Vector<float> *> eta_of;
+              for (Vector<float> &e : eta)
+                eta_of.push_back(&e);
+              // this rank's cells only (on a shared mesh Kelly estimates
+              // every cell unless given the subdomain; the sum over the
+              // ranks below would count each cell once per rank)
+              KellyErrorEstimator<3>::estimate(
+                model->mapping,
+                model->dof_handler,
+                QGauss<2>(model->fe.degree + 1),
+                {},
+                solutions,
+                eta_of,
+                ComponentMask(),
+                nullptr,
+                numbers::invalid_unsigned_int,
+                model->triangulation.locally_owned_subdomain());
+            }
           for (std::size_t j = 0; j < taken.size(); ++j)
             {
               Vector<double> mode(n_cells);
@@ -128,7 +179,8 @@ namespace squeal
 
     // Where the discretisation error of the modes sits: Kelly's estimator
     // (the jump of the gradient across faces; Kelly, Gago, Zienkiewicz &
-    // Babuska, IJNME 19, 1983) on the real and imaginary parts of every mode
+    // Babuska, IJNME 19, 1983) or the traction jump (Mesh/Error indicator)
+    // on the real and imaginary parts of every mode
     // of the first sweep point, each mode scaled to unit kinetic norm
     // (re^T M re + im^T M im = 1), the squares summed with weight 2 for
     // unstable and 1 for stable modes. The cell values go to mesh_error.vtu;
@@ -160,7 +212,9 @@ namespace squeal
           ++by_body[cell->material_id()].second;
           total += sum[c];
         }
-      pcout << "Error indicator (Kelly, " << pt->lambda.size()
+      pcout << "Error indicator ("
+            << (prm.mesh.error_indicator == "kelly" ? "Kelly" : "traction jump")
+            << ", " << pt->lambda.size()
             << " modes of the first point; mesh_error.vtu):"
             << std::setprecision(3);
       for (unsigned int b = 0; b < bodies.size(); ++b)

@@ -322,8 +322,9 @@ namespace squeal
                         "its DoFs, time and how far each mode's frequency "
                         "moved from the previous mesh (adaptive_cycles.csv; "
                         "a trend, not an error bound), and refines the cells "
-                        "with the largest error indicator (Kelly on the "
-                        "modes, mesh_error.vtu). 0: the mesh as built. The "
+                        "with the largest error indicator (Error "
+                        "indicator on the modes, mesh_error.vtu). 0: the "
+                        "mesh as built. The "
                         "braking simulation needs a conforming mesh and "
                         "ignores it.");
       prm.declare_entry("Refinement fraction",
@@ -357,6 +358,23 @@ namespace squeal
                         "(Doerfler's bulk criterion), so that a few "
                         "concentrated errors (spring attachments, the pad "
                         "edge) refine a few cells.");
+      prm.declare_entry(
+        "Error indicator",
+        error_indicator,
+        Patterns::Selection("kelly|traction jump"),
+        "The indicator of the modes' discretisation error per cell "
+        "(mesh_error.vtu, adaptive cycles). kelly: deal.II's Kelly "
+        "estimator, the jump of the displacement gradient across the "
+        "faces (Kelly, Gago, Zienkiewicz & Babuska 1983); at a bonded "
+        "interface between two materials that gradient jumps in the exact "
+        "solution too, so kelly marks such interfaces whatever the mesh. "
+        "traction jump: the jump of the traction sigma n across the "
+        "faces, h_F / 24 times its square integrated over the face and "
+        "divided by the mean Young's modulus of the two sides (an energy "
+        "density, as the residual estimators of elasticity), which "
+        "vanishes at such interfaces when the mesh resolves the mode. "
+        "Faces between bodies that do not share nodes (ties, contact) are "
+        "boundaries for both.");
       prm.declare_entry("Frequency tolerance",
                         str(frequency_tolerance),
                         Patterns::Double(0., 0.5),
@@ -419,6 +437,7 @@ namespace squeal
       adaptive_cycles     = prm.get_integer("Adaptive cycles");
       refinement_fraction = prm.get_double("Refinement fraction");
       marking             = prm.get("Marking");
+      error_indicator     = prm.get("Error indicator");
       estimate_solver     = prm.get("Estimate solver");
       frequency_tolerance = prm.get_double("Frequency tolerance");
       check_estimate      = prm.get_bool("Check estimate");

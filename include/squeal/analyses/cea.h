@@ -127,11 +127,13 @@ namespace squeal
       std::vector<std::string>
       write_modes(const std::vector<eigen::EigenPair> &x,
                   const std::vector<std::string>      &names) const;
-      /// Kelly's indicator on the first point's modes: mesh_error.vtu and
-      /// the share of each body, printed
+      /// the error indicator (Mesh/Error indicator) on the first point's
+      /// modes: mesh_error.vtu and the share of each body, printed
       void
       write_error_indicator() const;
-      /// Kelly's indicator of @p pairs (modes of the point @p values, each
+      /// the error indicator (Mesh/Error indicator: Kelly's or
+      /// physics::traction_jump_indicator()) of @p pairs (modes of the
+      /// point @p values, each
       /// scaled to unit kinetic norm with that point's whole mass M(p)),
       /// squared and summed per active cell; with @p weights (one per pair)
       /// each mode's squared field is scaled to a sum of weight^2 over the
@@ -173,7 +175,7 @@ namespace squeal
                    double                          worst,
                    dealii::types::global_dof_index rich_dofs,
                    dealii::ConditionalOStream     &quiet);
-      /// one h-refinement by Kelly's indicator on the modes @p pairs
+      /// one h-refinement by the error indicator on the modes @p pairs
       /// flagged in @p above (all if empty), scaled to @p weights if given
       void
       refine_by_modes(const std::vector<eigen::EigenPair> &pairs,

@@ -123,6 +123,11 @@ namespace squeal
       /// CEA: `cells` (refine that fraction of the cells) or `error`
       /// (the fewest cells carrying that fraction of the squared indicator)
       std::string marking = "cells";
+      /// CEA: the modes' error indicator, `kelly` (jump of the
+      /// displacement gradient across faces) or `traction jump` (jump of
+      /// the traction sigma n, continuous across bonded interfaces between
+      /// materials in the exact solution)
+      std::string error_indicator = "kelly";
       /// CEA: relative frequency tolerance of the tolerance-driven mode
       /// (0: off); the estimate solves the mesh at degree + 1
       double frequency_tolerance = 0.;
