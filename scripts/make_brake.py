@@ -186,7 +186,10 @@ def between(lattice, a, b):
     return [x for x in lattice if a - 1e-9 <= x <= b + 1e-9]
 
 
-def build(h, ventilated=False):
+def build(h, ventilated=False, disc_layers=None):
+    """The brake's mesh and spring groups at element size h [mm];
+    disc_layers: cells through the solid disc's friction ring and hat wall
+    (default: its 25 mm thickness over h, at least one)."""
     m = Mesh()
     # --- disc: its (r, z) profile turned about z ------------------------
     thickness = VENTED_THICKNESS if ventilated else DISC_THICKNESS
@@ -205,6 +208,9 @@ def build(h, ventilated=False):
                    h)
     z_lat = breaks([0.0] + cheeks + [thickness, HAT_TOP - FLANGE_THICKNESS,
                                      HAT_TOP], h)
+    if disc_layers and not ventilated:
+        z_lat = ([thickness * k / disc_layers for k in range(disc_layers)] +
+                 between(z_lat, thickness, HAT_TOP))
     ring_r = between(r_lat, HAT_R_OUT, DISC_R_OUT)
     if ventilated:
         m.box("disc", "disc", ring_r, ts, between(z_lat, 0, cheeks[0]),
@@ -417,18 +423,26 @@ def main():
                         help="element size [mm] (overrides --size)")
     parser.add_argument("--ventilated", action="store_true",
                         help="a ventilated disc (two cheeks and 36 vanes)")
+    parser.add_argument("--disc-layers", type=int,
+                        help="cells through the solid disc's thickness "
+                        "(default: its thickness over the element size)")
     parser.add_argument("--out", help="folder (default prm/brake_<size>, "
                         "prm/brake_<size>_ventilated with --ventilated)")
     args = parser.parse_args()
     h = args.element_size if args.element_size else SIZES[args.size]
     if not (h > 0.5):
         sys.exit("make_brake.py: --element-size must be > 0.5 mm")
+    if args.disc_layers is not None and not 1 <= args.disc_layers <= 32:
+        sys.exit("make_brake.py: --disc-layers must be 1 to 32")
+    if args.disc_layers is not None and args.ventilated:
+        sys.exit("make_brake.py: --disc-layers is for the solid disc (the "
+                 "ventilated disc's cheeks and vanes set its layers)")
     here = os.path.dirname(os.path.abspath(__file__))
     out = args.out or os.path.normpath(
         os.path.join(here, "..", "prm", f"brake_{args.size}" +
                      ("_ventilated" if args.ventilated else "")))
     os.makedirs(out, exist_ok=True)
-    m, g = build(h, args.ventilated)
+    m, g = build(h, args.ventilated, args.disc_layers)
     write_msh(m, os.path.join(out, "brake.msh"))
     write_scene(g, os.path.join(out, "brake_scene.prm"), "brake.msh")
     print(f"make_brake.py: {out}/brake.msh and brake_scene.prm: "
