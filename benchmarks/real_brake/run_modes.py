@@ -12,12 +12,14 @@ face and the bracket at its mounts, no springs, no damping.
   element sizes 10 and 7.5 mm, `ccx -i` with OMP_NUM_THREADS=2,
   OPENBLAS_NUM_THREADS=1, *FREQUENCY (SPOOLES + ARPACK) up to 16 kHz;
 - squeal: the same meshes (brake.msh) at degree 2 (10 and 7.5 mm) and 3
-  (15, 12.5 and 10 mm, and the 10 mm mesh with three cells through the
-  disc's thickness instead of two), the reduced solver with the undamped
-  symmetric modes up to 16 kHz as its basis (without friction and damping
-  its eigenvalues are those modes; no certification), 1 MPI rank.
-The reference is squeal's run with the most DoFs (degree 3, 10 mm mesh,
-three cells through the disc);
+  (15, 12.5 and 10 mm, the 10 mm mesh with three cells through the disc's
+  thickness instead of two, and the 15 and 10 mm meshes refined by
+  adaptive cycles with the traction-jump indicator), the reduced solver
+  with the undamped symmetric modes up to 16 kHz as its basis (without
+  friction and damping its eigenvalues are those modes; no
+  certification), 1 MPI rank.
+The reference is REFERENCE below (the 10 mm mesh at degree 3 with one
+adaptive cycle);
 error = the relative difference of the k-th frequency below 16 kHz from the
 k-th of the reference: the largest, the median, and how many of the
 reference's modes are within 0.5 %. Wall time and peak memory (maximum
@@ -42,9 +44,15 @@ import calculix_deck  # noqa: E402
 
 F_MAX = 16000.0
 # (element size [mm], degree, cells through the disc or None for the
-# generator's default, 25 mm over the element size)
-SQUEAL_RUNS = [(10.0, 2, None), (7.5, 2, None), (15.0, 3, None),
-               (12.5, 3, None), (10.0, 3, None), (10.0, 3, 3)]
+# generator's default, 25 mm over the element size, and None or the
+# adaptive cycles before the solve: (cycles, fraction of the cells refined
+# per cycle by the traction-jump indicator))
+SQUEAL_RUNS = [(10.0, 2, None, None), (7.5, 2, None, None),
+               (15.0, 3, None, None), (12.5, 3, None, None),
+               (10.0, 3, None, None), (10.0, 3, 3, None),
+               (15.0, 3, None, (2, 0.1)), (10.0, 3, None, (1, 0.05))]
+# the reference: the 10 mm mesh at degree 3 with one adaptive cycle
+REFERENCE = (10.0, 3, None, (1, 0.05))
 CALCULIX_RUNS = [10.0, 7.5]
 
 
@@ -108,9 +116,14 @@ def mesh_dir(work, h, layers=None):
     return out
 
 
-def squeal_run(squeal, work, h, degree, layers=None):
-    name = f"squeal_h{h:g}_q{degree}" + layers_suffix(layers)
+def squeal_run(squeal, work, h, degree, layers=None, adapt=None):
+    name = f"squeal_h{h:g}_q{degree}" + layers_suffix(layers) + \
+        (f"_a{adapt[0]}f{adapt[1]:g}" if adapt else "")
     out = os.path.join(work, name)
+    adaptive = f"""
+  set Adaptive cycles = {adapt[0]}
+  set Refinement fraction = {adapt[1]:g}
+  set Error indicator = traction jump""" if adapt else ""
 
     def run():
         mesh = mesh_dir(work, h, layers)
@@ -126,7 +139,7 @@ subsection Scene
   end
 end
 subsection Mesh
-  set Finite element degree = {degree}
+  set Finite element degree = {degree}{adaptive}
 end
 subsection Damping
   set Alpha = 0
@@ -154,9 +167,13 @@ subsection Output
 end
 """)
         r, seconds, mb, values = run_squeal(squeal, out, work)
-        dofs = int(re.search(r"(\d+) DoFs", r.stdout).group(1))
+        # the final mesh's (after the adaptive cycles)
+        dofs = int(re.findall(r"(\d+) DoFs", r.stdout)[-1])
         freqs = sorted(f for f, _ in values)
-        return dict(code="squeal", mesh_mm=h, element=f"degree {degree}",
+        element = f"degree {degree}" + (
+            f", {adapt[0]} adaptive cycle{'s' if adapt[0] > 1 else ''} "
+            f"({100 * adapt[1]:g} %, traction jump)" if adapt else "")
+        return dict(code="squeal", mesh_mm=h, element=element,
                     disc_layers=layers or default_layers(h), dofs=dofs,
                     seconds=seconds, memory_MB=mb, freqs=freqs)
     return cached(out + ".json", run)
@@ -197,9 +214,9 @@ def main():
     os.makedirs(work, exist_ok=True)
     if subprocess.run(["which", "ccx"], capture_output=True).returncode:
         sys.exit("run_modes.py needs CalculiX: apt-get install calculix-ccx")
-    runs = [squeal_run(squeal, work, h, q, n) for h, q, n in SQUEAL_RUNS]
+    runs = [squeal_run(squeal, work, *run) for run in SQUEAL_RUNS]
     runs += [calculix_run(work, h) for h in CALCULIX_RUNS]
-    finest = max(runs[:len(SQUEAL_RUNS)], key=lambda r: r["dofs"])
+    finest = runs[SQUEAL_RUNS.index(REFERENCE)]
     band = [f for f in finest["freqs"] if f <= F_MAX]
     print(f"reference: squeal {finest['element']}, {finest['mesh_mm']:g} mm "
           f"mesh, {finest['disc_layers']} cells through the disc, "
