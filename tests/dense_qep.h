@@ -4,6 +4,8 @@
 #ifndef squeal_tests_dense_qep_h
 #define squeal_tests_dense_qep_h
 
+#include <squeal/base/lapack.h>
+
 #include <Eigen/Dense>
 
 #include <cmath>
@@ -11,24 +13,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-// LAPACK's dgeev (deal.II's lapack_templates.h conflicts with Eigen's BLAS
-// declarations)
-extern "C" void
-dgeev_(const char *jobvl,
-       const char *jobvr,
-       const int  *n,
-       double     *a,
-       const int  *lda,
-       double     *wr,
-       double     *wi,
-       double     *vl,
-       const int  *ldvl,
-       double     *vr,
-       const int  *ldvr,
-       double     *work,
-       const int  *lwork,
-       int        *info);
 
 namespace test_tools
 {

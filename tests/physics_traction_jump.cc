@@ -110,13 +110,13 @@ namespace
     hanging.distribute(x);
     ghosted = x;
     // nu = 0: sigma = E eps
-    const physics::StressOf stress = [&](const types::material_id id,
-                                         const Point<3> &,
-                                         const Tensor<2, 3> &G) {
-      return SymmetricTensor<2, 3>(E(id) * symmetrize(G));
+    const physics::StiffnessOf stiffness = [&](const types::material_id id,
+                                               const Point<3> &) {
+      return SymmetricTensor<4, 3>(E(id) * identity_tensor<3>());
     };
     std::vector<Vector<float>> eta;
-    physics::traction_jump_indicator(mapping, dofs, stress, E, {&ghosted}, eta);
+    physics::traction_jump_indicator(
+      mapping, dofs, stiffness, E, {&ghosted}, eta);
     Vector<float> kelly(tria.n_active_cells());
     // on a shared mesh Kelly estimates every cell unless told this rank's
     KellyErrorEstimator<3>::estimate(mapping,

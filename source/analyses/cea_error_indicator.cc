@@ -47,19 +47,17 @@ namespace squeal
         physics::traction_jump_indicator(
           model.mapping,
           model.dof_handler,
-          [&](const types::material_id id,
-              const Point<3>          &x,
-              const Tensor<2, 3>      &G) {
-            const scene::Body          &body = scene.body(id);
-            const SymmetricTensor<2, 3> eps  = symmetrize(G);
+          [&](const types::material_id id, const Point<3> &x) {
+            const scene::Body &body = scene.body(id);
             if (body.law.anisotropic)
-              return SymmetricTensor<2, 3>(scene.stiffness_tensor(id, x, p) *
-                                           eps);
+              return scene.stiffness_tensor(id, x, p);
             const auto [lambda, mu] =
               physics::lame_constants(scene.youngs_modulus(id, p),
                                       body.material.poisson_ratio);
-            return SymmetricTensor<2, 3>(
-              lambda * trace(eps) * unit_symmetric_tensor<3>() + 2. * mu * eps);
+            return SymmetricTensor<4, 3>(
+              lambda * outer_product(unit_symmetric_tensor<3>(),
+                                     unit_symmetric_tensor<3>()) +
+              2. * mu * identity_tensor<3>());
           },
           [&](const types::material_id id) {
             return scene.youngs_modulus(id, p);

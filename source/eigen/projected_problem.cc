@@ -3,28 +3,14 @@
 // modal damping on a subspace, and the projected quadratic eigenproblem by
 // its companion linearisation (LAPACK dgeev).
 
+#include <squeal/base/lapack.h>
+
 #include "dense_block.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-
-extern "C" void
-dgeev_(const char *jobvl,
-       const char *jobvr,
-       const int  *n,
-       double     *a,
-       const int  *lda,
-       double     *wr,
-       double     *wi,
-       double     *vl,
-       const int  *ldvl,
-       double     *vr,
-       const int  *ldvr,
-       double     *work,
-       const int  *lwork,
-       int        *info);
 
 namespace squeal
 {

@@ -19,7 +19,7 @@ namespace squeal
     traction_jump_indicator(
       const Mapping<3>                                      &mapping,
       const DoFHandler<3>                                   &dof_handler,
-      const StressOf                                        &stress,
+      const StiffnessOf                                     &stiffness,
       const std::function<double(types::material_id)>       &modulus,
       const std::vector<const PETScWrappers::MPI::Vector *> &solutions,
       std::vector<Vector<float>>                            &eta)
@@ -39,8 +39,8 @@ namespace squeal
       const unsigned int                     n_q = quadrature.size();
       std::vector<std::vector<Tensor<2, 3>>> grad(
         2, std::vector<Tensor<2, 3>>(n_q));
-      std::vector<std::vector<Tensor<1, 3>>> traction(
-        2, std::vector<Tensor<1, 3>>(n_q));
+      std::vector<std::vector<SymmetricTensor<4, 3>>> C(
+        2, std::vector<SymmetricTensor<4, 3>>(n_q));
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           for (const unsigned int f : cell->face_indices())
@@ -74,25 +74,21 @@ namespace squeal
                                    (0.5 * (modulus(ids[0]) + modulus(ids[1])));
               const FEFaceValuesBase<3> &side0 =
                 interface.get_fe_face_values(0);
+              for (unsigned int side = 0; side < 2; ++side)
+                for (unsigned int q = 0; q < n_q; ++q)
+                  C[side][q] = stiffness(ids[side], side0.quadrature_point(q));
               for (std::size_t s = 0; s < solutions.size(); ++s)
                 {
                   for (unsigned int side = 0; side < 2; ++side)
-                    {
-                      const FEFaceValuesBase<3> &values =
-                        interface.get_fe_face_values(side);
-                      values[u].get_function_gradients(*solutions[s],
-                                                       grad[side]);
-                      for (unsigned int q = 0; q < n_q; ++q)
-                        traction[side][q] = stress(ids[side],
-                                                   values.quadrature_point(q),
-                                                   grad[side][q]) *
-                                            side0.normal_vector(q);
-                    }
+                    interface.get_fe_face_values(side)[u]
+                      .get_function_gradients(*solutions[s], grad[side]);
                   double integral = 0.;
                   for (unsigned int q = 0; q < n_q; ++q)
-                    integral +=
-                      (traction[0][q] - traction[1][q]).norm_square() *
-                      side0.JxW(q);
+                    integral += ((C[0][q] * symmetrize(grad[0][q]) -
+                                  C[1][q] * symmetrize(grad[1][q])) *
+                                 side0.normal_vector(q))
+                                  .norm_square() *
+                                side0.JxW(q);
                   sum[s][cell->active_cell_index()] += scale * integral;
                   sum[s][neighbor->active_cell_index()] += scale * integral;
                 }

@@ -24,14 +24,12 @@ namespace squeal
   namespace physics
   {
     /**
-     * The stress [Pa] of the material of a cell (its material id) at a
-     * point [m] for a displacement gradient G (G_ij = d u_i / d x_j, 3 x 3,
-     * dimensionless).
+     * The stiffness tensor C [Pa] (sigma = C : eps, global frame) of the
+     * material of a cell (its material id) at a point [m].
      */
-    using StressOf = std::function<
-      dealii::SymmetricTensor<2, 3>(dealii::types::material_id,
-                                    const dealii::Point<3> &,
-                                    const dealii::Tensor<2, 3> &)>;
+    using StiffnessOf =
+      std::function<dealii::SymmetricTensor<4, 3>(dealii::types::material_id,
+                                                  const dealii::Point<3> &)>;
 
     /**
      * The face-jump part of the residual error estimator of linear
@@ -40,8 +38,9 @@ namespace squeal
      * stress across interior faces), with Kelly's face scaling: for every
      * interior face F of @p dof_handler's active mesh,
      *   e_F = h / 24 int_F |sigma_1 n - sigma_2 n|^2 dA / E_F,
-     * h the diameter of the finer of the two cells, sigma_i = @p stress on
-     * side i of the field's gradient there, n the normal, E_F the mean of
+     * h the diameter of the finer of the two cells, sigma_i = C_i : eps_i
+     * on side i (C_i of @p stiffness at the face's quadrature points, taken
+     * once per face for all the solutions), n the normal, E_F the mean of
      * the two sides' @p modulus [Pa]; e_F is added to the squares of both
      * cells (an energy [J] per unit of the field's scale squared). Unlike
      * the jump of the gradient (Kelly), the traction is continuous across
@@ -65,7 +64,7 @@ namespace squeal
     traction_jump_indicator(
       const dealii::Mapping<3>                                &mapping,
       const dealii::DoFHandler<3>                             &dof_handler,
-      const StressOf                                          &stress,
+      const StiffnessOf                                       &stiffness,
       const std::function<double(dealii::types::material_id)> &modulus,
       const std::vector<const dealii::PETScWrappers::MPI::Vector *> &solutions,
       std::vector<dealii::Vector<float>>                            &eta);
