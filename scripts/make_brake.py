@@ -424,8 +424,9 @@ def main():
     parser.add_argument("--ventilated", action="store_true",
                         help="a ventilated disc (two cheeks and 36 vanes)")
     parser.add_argument("--disc-layers", type=int,
-                        help="cells through the solid disc's thickness "
-                        "(default: its thickness over the element size)")
+                        help="cells through the solid disc's thickness, "
+                        "1 to 32 (default: its 25 mm over the element size, "
+                        "rounded)")
     parser.add_argument("--out", help="folder (default prm/brake_<size>, "
                         "prm/brake_<size>_ventilated with --ventilated)")
     args = parser.parse_args()
