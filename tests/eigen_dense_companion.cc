@@ -181,7 +181,30 @@ main(int argc, char **argv)
         std::max(recomputed_report.largest_residual, 1e-10),
         1e-10,
         0);
+  // a tolerance below the products' rounding floor: the rounds stop when
+  // the largest residual has stopped falling, long before the round limit
+  eigen::BandOptions unattainable = band;
+  unattainable.residual_tolerance = 1e-18;
+  eigen::FullSolveReport floor_report;
+  const auto             floored =
+    eigen::solve_full(parts, point, unattainable, quiet, &floor_report);
+  test_tools::verbose() << "tolerance 1e-18: largest residual "
+                        << floor_report.largest_residual << " after "
+                        << floor_report.rounds << " rounds" << std::endl;
+  check("tolerance 1e-18: the rounds stop as stalled",
+        floor_report.stalled ? 1 : 0,
+        1,
+        0);
+  check("tolerance 1e-18: before the round limit of 20",
+        floor_report.rounds < unattainable.max_rounds ? 1 : 0,
+        1,
+        0);
+  check("tolerance 1e-18: every residual below 1e-10 (the floor reached)",
+        std::max(floor_report.largest_residual, 1e-10),
+        1e-10,
+        0);
   compare("stored products", full, dense_band);
   compare("recomputed products", recomputed, dense_band);
+  compare("tolerance 1e-18", floored, dense_band);
   return test_tools::finish();
 }

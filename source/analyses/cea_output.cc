@@ -354,7 +354,8 @@ namespace squeal
           for (const std::string &file : write_modes(x, names))
             records.emplace_back(records.size(), "modes/" + file);
         }
-      write_error_indicator();
+      if (prm.output.error_indicator)
+        write_error_indicator();
       if (root)
         {
           io::OutputFile pvd(work_dir + "/modes.pvd");

@@ -22,6 +22,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -125,6 +126,34 @@ namespace squeal
         if (2 * a != Y.cols())
           throw std::logic_error(
             "full solver: one residual pair per open mode");
+      }
+
+      // Whether every pair of NOW (lambda, residual) above TOL is stalled:
+      // its partner in BEFORE, the pair of nearest lambda, lies within
+      // 1e-6 |lambda| and had less than twice its residual.
+      bool
+      stalled(
+        const std::vector<std::pair<std::complex<double>, double>> &now,
+        const std::vector<std::pair<std::complex<double>, double>> &before,
+        const double                                                tol)
+      {
+        for (const auto &[lambda, residual] : now)
+          {
+            if (!(residual > tol))
+              continue;
+            double distance = std::numeric_limits<double>::infinity(),
+                   partner  = 0.;
+            for (const auto &[l, res] : before)
+              if (std::abs(l - lambda) < distance)
+                {
+                  distance = std::abs(l - lambda);
+                  partner  = res;
+                }
+            if (!(distance <= 1e-6 * std::abs(lambda)) ||
+                residual < 0.5 * partner)
+              return false;
+          }
+        return true;
       }
     } // namespace
 
@@ -336,6 +365,14 @@ namespace squeal
 
       std::vector<internal::ProjectedPair> pairs;
       std::vector<double>                  res;
+      // each round's pairs (lambda, residual): the rounds stop when every
+      // pair above the tolerance has a partner two rounds earlier (the
+      // nearest eigenvalue there, within 1e-6 of |lambda|) whose residual
+      // it has not halved: stalled at the rounding floor of the products,
+      // of the order of eps (omega_max / omega)^2 for a mode of frequency
+      // omega on a mesh whose highest is omega_max. A pair that has just
+      // entered the band has no partner and keeps the rounds going.
+      std::vector<std::vector<std::pair<std::complex<double>, double>>> history;
       for (r.rounds = 0;; ++r.rounds)
         {
           auto t = std::chrono::steady_clock::now();
@@ -351,7 +388,14 @@ namespace squeal
           Eigen::MatrixXd corrections;
           res = residuals(s, pairs, band.residual_tolerance, corrections);
           r.seconds_residuals += lap();
-          if (corrections.cols() == 0 || r.rounds == band.max_rounds)
+          history.emplace_back();
+          for (unsigned int j = 0; j < pairs.size(); ++j)
+            history.back().emplace_back(pairs[j].lambda, res[j]);
+          r.stalled = history.size() > 2 && stalled(history.back(),
+                                                    history[history.size() - 3],
+                                                    band.residual_tolerance);
+          if (corrections.cols() == 0 || r.rounds == band.max_rounds ||
+              r.stalled)
             break;
           Eigen::MatrixXd directions =
             internal::solve_block(factorised, K_s, corrections);
@@ -395,6 +439,9 @@ namespace squeal
             << " basis vectors, largest relative residual "
             << r.largest_residual << " after " << r.rounds << " rounds ("
             << r.above_tolerance << " above " << band.residual_tolerance
+            << (r.stalled ? ", stalled: none of them halved its residual "
+                            "in two rounds" :
+                            "")
             << "); " << t_count << " s count, " << t_symmetric - t_count
             << " s symmetric modes, " << t_projection << " s projection, "
             << r.seconds - t_symmetric - t_projection << " s refinement ("

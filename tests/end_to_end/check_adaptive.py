@@ -4,7 +4,11 @@
 usage: check_adaptive.py SQUEAL PRM WORKDIR
 
 - without cycles the run writes mesh_error.csv (cells and indicator share
-  per body) and no adaptive_cycles.csv;
+  per body) and no adaptive_cycles.csv; with Output/Error indicator = false
+  neither mesh_error file, and the same eigenvalues;
+- cycles 0 and 1 solve without refinement rounds (they only drive the
+  indicator), the last cycle's solve (the sweep's first point) is refined
+  to the residual tolerance;
 - with 2 cycles, adaptive_cycles.csv has the cycles 0, 1, 2 with cells and
   DoFs growing, the frequency changes from cycle 1 on, and the final mesh
   (mesh_error.csv) has more cells than the first;
@@ -21,6 +25,7 @@ usage: check_adaptive.py SQUEAL PRM WORKDIR
 """
 import csv
 import os
+import re
 import sys
 
 from checks import check, finish, run_squeal
@@ -58,6 +63,14 @@ b0 = bodies(plain)
 check("no cycles: mesh_error.csv, no adaptive_cycles.csv",
       set(b0) == {"disc", "pad", "support"}
       and not os.path.exists(os.path.join(plain, "adaptive_cycles.csv")), str(b0))
+quiet, _ = run_squeal(squeal, prm, "no_indicator",
+                      "subsection Output\n  set Error indicator = false\nend\n")
+check("Output/Error indicator = false: no mesh_error files, the same "
+      "eigenvalues",
+      not any(os.path.exists(os.path.join(quiet, "mesh_error." + e))
+              for e in ("csv", "vtu"))
+      and eigenvalues(quiet) == eigenvalues(plain)
+      and len(eigenvalues(plain)) > 10, str(len(eigenvalues(quiet))))
 adaptive, log = run("adaptive", 2)
 cycles = table(os.path.join(adaptive, "adaptive_cycles.csv"))
 check("adaptive_cycles.csv: cycles 0, 1, 2 with cells and DoFs growing",
@@ -68,6 +81,16 @@ check("frequency changes reported from cycle 1 on",
       float(cycles[0]["max_relative_change"]) < 0
       and all(float(r["max_relative_change"]) >= 0 for r in cycles[1:])
       and "change from the previous mesh" in log, log[-1500:])
+# the cycles before the last only drive the indicator (the projection, no
+# refinement rounds); the last is the sweep's first point, refined to
+# Eigensolver/Residual tolerance (1e-10)
+solves = [(int(c), int(n), float(r)) for c, n, r in re.findall(
+    r"Adaptive cycle (\d+): .*\((\d+) refinement rounds, largest relative "
+    r"residual ([0-9.eE+-]+)\)", log)]
+check("cycles 0 and 1 without refinement rounds, cycle 2 refined to 1e-10",
+      [c for c, _, _ in solves] == [0, 1, 2]
+      and solves[0][1] == 0 and solves[1][1] == 0
+      and solves[2][1] >= 1 and solves[2][2] <= 1e-10, str(solves))
 b2 = bodies(adaptive)
 gain = {b: b2[b][0] / b0[b][0] for b in b0}
 worst = max(b0, key=lambda b: b0[b][1])

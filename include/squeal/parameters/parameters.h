@@ -455,6 +455,9 @@ namespace squeal
       /// CEA: decompose every unstable region's mode at its largest growth
       /// rate on the frictionless assembly's modes (modal_contributions.csv)
       bool modal_contributions = false;
+      /// CEA: write the error indicator of the first point's modes
+      /// (mesh_error.vtu, mesh_error.csv)
+      bool error_indicator = true;
       /** Declares the subsection's entries: defaults, ranges, help (SI units).
        */
       void
