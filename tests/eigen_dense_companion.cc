@@ -169,14 +169,21 @@ main(int argc, char **argv)
 
   // the full solver with its subspace products stored (the default) and
   // recomputed, each against the dense solve
+  // the full solver with BAND_OF_RUN, its report printed under LABEL
+  const auto solve = [&](const std::string        &label,
+                         const eigen::BandOptions &band_of_run,
+                         eigen::FullSolveReport   &report) {
+    auto pairs = eigen::solve_full(parts, point, band_of_run, quiet, &report);
+    test_tools::verbose() << label << ": largest residual "
+                          << report.largest_residual << " after "
+                          << report.rounds << " rounds" << std::endl;
+    return pairs;
+  };
   eigen::BandOptions recomputed_band = band;
   recomputed_band.store_products     = false;
   eigen::FullSolveReport recomputed_report;
   const auto             recomputed =
-    eigen::solve_full(parts, point, recomputed_band, quiet, &recomputed_report);
-  test_tools::verbose() << "recomputed products: largest residual "
-                        << recomputed_report.largest_residual << " after "
-                        << recomputed_report.rounds << " rounds" << std::endl;
+    solve("recomputed products", recomputed_band, recomputed_report);
   check("recomputed products: every residual below 1e-10",
         std::max(recomputed_report.largest_residual, 1e-10),
         1e-10,
@@ -186,11 +193,7 @@ main(int argc, char **argv)
   eigen::BandOptions unattainable = band;
   unattainable.residual_tolerance = 1e-18;
   eigen::FullSolveReport floor_report;
-  const auto             floored =
-    eigen::solve_full(parts, point, unattainable, quiet, &floor_report);
-  test_tools::verbose() << "tolerance 1e-18: largest residual "
-                        << floor_report.largest_residual << " after "
-                        << floor_report.rounds << " rounds" << std::endl;
+  const auto floored = solve("tolerance 1e-18", unattainable, floor_report);
   check("tolerance 1e-18: the rounds stop as stalled",
         floor_report.stalled ? 1 : 0,
         1,

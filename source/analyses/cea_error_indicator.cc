@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -101,8 +102,9 @@ namespace squeal
       for (std::size_t first = 0; first < pairs.size(); first += batch)
         {
           const std::size_t end = std::min(pairs.size(), first + batch);
-          // the batch's pairs of nonzero norm, their weights and vectors
-          std::vector<std::size_t>                  taken;
+          // the batch's pairs of nonzero norm, their weights, vectors and
+          // the index of each one's first vector in SOLUTIONS
+          std::vector<std::size_t>                  taken, first_vector;
           std::vector<double>                       weight;
           std::vector<const physics::PETScVector *> solutions;
           for (std::size_t k = first; k < end; ++k)
@@ -110,20 +112,41 @@ namespace squeal
               const eigen::EigenPair &pair = pairs[k];
               physics::PETScVector    re = pair.re, im = pair.im, Mx(pair.re);
               M.vmult(Mx, re);
-              double norm2 = re * Mx;
+              const double a = re * Mx, c = im * Mx;
               M.vmult(Mx, im);
-              norm2 += im * Mx;
+              const double b     = im * Mx;
+              const double norm2 = a + b;
               if (!(norm2 > 0.))
                 continue;
               taken.push_back(k);
+              first_vector.push_back(solutions.size());
               weight.push_back((pair.lambda.real() > 0. ? 2. : 1.) / norm2);
-              for (physics::PETScVector *x : {&re, &im})
+              // The indicator is a sum of squares of linear functionals of
+              // the field, so eta^2(re) + eta^2(im) does not change when
+              // the mode is multiplied by a phase e^{-i theta}. The phase
+              // that makes the real and imaginary parts M-orthogonal, the
+              // real part the larger, leaves an imaginary part of norm
+              // zero for a real mode (undamped and frictionless: every
+              // mode of a real-modes run), which is then not estimated.
+              const double         theta = 0.5 * std::atan2(2. * c, a - b);
+              const double         cs = std::cos(theta), sn = std::sin(theta);
+              physics::PETScVector rotated_re(re), rotated_im(im);
+              rotated_re *= cs;
+              rotated_re.add(sn, im);
+              rotated_im *= cs;
+              rotated_im.add(-sn, re);
+              const double major = 0.5 * norm2 + std::hypot(0.5 * (a - b), c);
+              std::vector<physics::PETScVector *> parts{&rotated_re};
+              if (norm2 - major > 1e-14 * norm2)
+                parts.push_back(&rotated_im);
+              for (physics::PETScVector *x : parts)
                 {
                   model->constraints.distribute(*x);
                   ghosted[solutions.size()] = *x;
                   solutions.push_back(&ghosted[solutions.size()]);
                 }
             }
+          first_vector.push_back(solutions.size());
           if (solutions.empty())
             continue;
           std::vector<Vector<float>> eta(solutions.size(),
@@ -153,9 +176,10 @@ namespace squeal
           for (std::size_t j = 0; j < taken.size(); ++j)
             {
               Vector<double> mode(n_cells);
-              for (const Vector<float> *e : {&eta[2 * j], &eta[2 * j + 1]})
+              for (std::size_t v = first_vector[j]; v < first_vector[j + 1];
+                   ++v)
                 for (unsigned int c = 0; c < n_cells; ++c)
-                  mode[c] += weight[j] * double((*e)[c]) * double((*e)[c]);
+                  mode[c] += weight[j] * double(eta[v][c]) * double(eta[v][c]);
               if (!weights.empty())
                 {
                   // where this mode's error sits (unit sum over all cells),
