@@ -13,11 +13,12 @@ face and the bracket at its mounts, no springs, no damping.
   OPENBLAS_NUM_THREADS=1, *FREQUENCY (SPOOLES + ARPACK) up to 16 kHz;
 - squeal: the same meshes (brake.msh) at degree 2 (10 and 7.5 mm) and 3
   (15, 12.5 and 10 mm, the 10 mm mesh with three cells through the disc's
-  thickness instead of two, and the 15 and 10 mm meshes refined by
+  thickness instead of two, and the 15, 12.5 and 10 mm meshes refined by
   adaptive cycles with the traction-jump indicator), the reduced solver
   with the undamped symmetric modes up to 16 kHz as its basis (without
   friction and damping its eigenvalues are those modes; no
-  certification), 1 MPI rank.
+  certification), no mesh_error output (Output/Error indicator = false:
+  the runs time the modes), 1 MPI rank.
 The reference is REFERENCE below (the 10 mm mesh at degree 3 with one
 adaptive cycle);
 error = the relative difference of the k-th frequency below 16 kHz from the

@@ -87,10 +87,9 @@ namespace squeal
                         "CEA: write mesh_error.vtu and mesh_error.csv, "
                         "Mesh/Error indicator on the first point's modes "
                         "(where the mesh is too coarse for them, per cell "
-                        "and per body); false saves its cost (a fifth to a "
-                        "quarter of a run that solves one point of the "
-                        "passenger-car brake at degree 3: 46 of 170 s on the "
-                        "10 mm mesh).");
+                        "and per body); false saves its cost, a large part "
+                        "of a run that solves a single point "
+                        "(benchmarks/real_brake/README.md).");
       prm.leave_subsection();
     }
 
