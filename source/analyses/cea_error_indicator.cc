@@ -128,17 +128,18 @@ namespace squeal
               // real part the larger, leaves an imaginary part of norm
               // zero for a real mode (undamped and frictionless: every
               // mode of a real-modes run), which is then not estimated.
-              const double         theta = 0.5 * std::atan2(2. * c, a - b);
-              const double         cs = std::cos(theta), sn = std::sin(theta);
-              physics::PETScVector rotated_re(re), rotated_im(im);
-              rotated_re *= cs;
-              rotated_re.add(sn, im);
-              rotated_im *= cs;
-              rotated_im.add(-sn, re);
+              const double theta = 0.5 * std::atan2(2. * c, a - b);
+              const double cs = std::cos(theta), sn = std::sin(theta);
+              // re, im <- cs re + sn im, cs im - sn re (Mx the old re)
+              Mx = re;
+              re *= cs;
+              re.add(sn, im);
+              im *= cs;
+              im.add(-sn, Mx);
               const double major = 0.5 * norm2 + std::hypot(0.5 * (a - b), c);
-              std::vector<physics::PETScVector *> parts{&rotated_re};
+              std::vector<physics::PETScVector *> parts{&re};
               if (norm2 - major > 1e-14 * norm2)
-                parts.push_back(&rotated_im);
+                parts.push_back(&im);
               for (physics::PETScVector *x : parts)
                 {
                   model->constraints.distribute(*x);

@@ -128,19 +128,22 @@ namespace squeal
             "full solver: one residual pair per open mode");
       }
 
-      // Whether every pair of NOW (lambda, residual) above TOL is stalled:
-      // its partner in BEFORE, the pair of nearest lambda, lies within
-      // 1e-6 |lambda| and had less than twice its residual.
+      // Whether NOW (lambda, residual) has pairs above TOL and every one of
+      // them is stalled: its partner in BEFORE, the pair of nearest
+      // lambda, lies within 1e-6 |lambda| and had less than twice its
+      // residual.
       bool
       stalled(
         const std::vector<std::pair<std::complex<double>, double>> &now,
         const std::vector<std::pair<std::complex<double>, double>> &before,
         const double                                                tol)
       {
+        bool open = false;
         for (const auto &[lambda, residual] : now)
           {
             if (!(residual > tol))
               continue;
+            open            = true;
             double distance = std::numeric_limits<double>::infinity(),
                    partner  = 0.;
             for (const auto &[l, res] : before)
@@ -153,7 +156,7 @@ namespace squeal
                 residual < 0.5 * partner)
               return false;
           }
-        return true;
+        return open;
       }
     } // namespace
 
