@@ -9,7 +9,7 @@ each pad face tied to its disc face (squeal: Ties, dual mortar; CalculiX:
 *TIE), every body and material of brake_scene.prm, the disc held at its hub
 face and the bracket at its mounts, no springs, no damping.
 - CalculiX: calculix_deck.py's C3D20R decks of the generator's meshes at
-  element sizes 10 and 7.5 mm, `ccx -i` with OMP_NUM_THREADS=2,
+  element sizes 10, 7.5 and 6 mm, `ccx -i` with OMP_NUM_THREADS=2,
   OPENBLAS_NUM_THREADS=1, *FREQUENCY (SPOOLES + ARPACK) up to 16 kHz;
 - squeal: the same meshes (brake.msh) at degree 2 (10 and 7.5 mm) and 3
   (15, 12.5 and 10 mm, the 10 mm mesh with three cells through the disc's
@@ -55,7 +55,7 @@ SQUEAL_RUNS = [(10.0, 2, None, None), (7.5, 2, None, None),
                (12.5, 3, None, (1, 0.05)), (10.0, 3, None, (1, 0.05))]
 # the reference: the 10 mm mesh at degree 3 with one adaptive cycle
 REFERENCE = (10.0, 3, None, (1, 0.05))
-CALCULIX_RUNS = [10.0, 7.5]
+CALCULIX_RUNS = [10.0, 7.5, 6.0]
 
 
 def timed(command, cwd, env=None):
