@@ -11,7 +11,7 @@ face and the bracket at its mounts, no springs, no damping.
 - CalculiX: calculix_deck.py's C3D20R decks of the generator's meshes at
   element sizes 10, 7.5 and 6 mm, `ccx -i` with OMP_NUM_THREADS=2,
   OPENBLAS_NUM_THREADS=1, *FREQUENCY (SPOOLES + ARPACK) up to 16 kHz;
-- squeal: the same meshes (brake.msh) at degree 2 (10 and 7.5 mm) and 3
+- squeal: the same meshes (brake.msh) at degree 2 (10, 7.5 and 6 mm) and 3
   (15, 12.5 and 10 mm, the 10 mm mesh with three cells through the disc's
   thickness instead of two, and the 15, 12.5 and 10 mm meshes refined by
   adaptive cycles with the traction-jump indicator), the reduced solver
@@ -49,6 +49,7 @@ F_MAX = 16000.0
 # adaptive cycles before the solve: (cycles, fraction of the cells refined
 # per cycle by the traction-jump indicator))
 SQUEAL_RUNS = [(10.0, 2, None, None), (7.5, 2, None, None),
+               (6.0, 2, None, None),
                (15.0, 3, None, None), (12.5, 3, None, None),
                (10.0, 3, None, None), (10.0, 3, 3, None),
                (15.0, 3, None, (2, 0.1)), (12.5, 3, None, (1, 0.1)),
