@@ -167,17 +167,18 @@ class Mesh:
                     quads.append(quad)
 
 
-def division(a, b, h):
-    """Points from a to b in steps of about h (at least one step)."""
-    n = max(1, int(round(abs(b - a) / h)))
+def division(a, b, h, least=1):
+    """Points from a to b in steps of about h (at least LEAST steps)."""
+    n = max(least, int(round(abs(b - a) / h)))
     return [a + (b - a) * i / n for i in range(n + 1)]
 
 
-def breaks(points, h):
-    """A lattice through every break point, steps of about h between."""
+def breaks(points, h, least=1):
+    """A lattice through every break point, steps of about h between
+    (at least LEAST between two break points)."""
     out = [points[0]]
     for a, b in zip(points, points[1:]):
-        out += division(a, b, h)[1:]
+        out += division(a, b, h, least)[1:]
     return out
 
 
@@ -186,10 +187,12 @@ def between(lattice, a, b):
     return [x for x in lattice if a - 1e-9 <= x <= b + 1e-9]
 
 
-def build(h, ventilated=False, disc_layers=None):
+def build(h, ventilated=False, disc_layers=None, min_cells=1):
     """The brake's mesh and spring groups at element size h [mm];
     disc_layers: cells through the solid disc's friction ring and hat wall
-    (default: its 25 mm thickness over h, at least one)."""
+    (default: its 25 mm thickness over h, at least one); min_cells: the
+    fewest cells between two break points of a lattice (the thin parts:
+    backplates, hat wall, flange, ears, abutments)."""
     m = Mesh()
     # --- disc: its (r, z) profile turned about z ------------------------
     thickness = VENTED_THICKNESS if ventilated else DISC_THICKNESS
@@ -198,16 +201,16 @@ def build(h, ventilated=False, disc_layers=None):
         pitch, width = 2 * math.pi / VANES, math.radians(VANE_ANGLE)
         ts = breaks([a for k in range(VANES)
                      for a in (k * pitch, k * pitch + width)] +
-                    [2 * math.pi], h / DISC_R_OUT)
+                    [2 * math.pi], h / DISC_R_OUT, min_cells)
         cheeks = [CHEEK_THICKNESS, thickness - CHEEK_THICKNESS]
     else:
         n_theta = 4 * max(3, int(round(2 * math.pi * DISC_R_OUT / h / 4)))
         ts = [2 * math.pi * j / n_theta for j in range(n_theta + 1)]
         cheeks = []
     r_lat = breaks([HUB_R_BORE, HUB_R_BOLT, HAT_R_IN, HAT_R_OUT, DISC_R_OUT],
-                   h)
+                   h, min_cells)
     z_lat = breaks([0.0] + cheeks + [thickness, HAT_TOP - FLANGE_THICKNESS,
-                                     HAT_TOP], h)
+                                     HAT_TOP], h, min_cells)
     if disc_layers and not ventilated:
         z_lat = ([thickness * k / disc_layers for k in range(disc_layers)] +
                  between(z_lat, thickness, HAT_TOP))
@@ -241,9 +244,9 @@ def build(h, ventilated=False, disc_layers=None):
     a_abut = a_ear + ABUTMENT_LENGTH / r_mean
     h_t = h / r_mean
     t_lat = breaks([-a_abut, -a_ear, -a_pad, -a_piston, a_piston, a_pad,
-                    a_ear, a_abut], h_t)
+                    a_ear, a_abut], h_t, min_cells)
     rc_lat = breaks([PAD_R_IN, PISTON_R_IN, PISTON_R_OUT, PAD_R_OUT,
-                     BRIDGE_R_IN, BRIDGE_R_OUT], h)
+                     BRIDGE_R_IN, BRIDGE_R_OUT], h, min_cells)
     z_in_bp = -PAD_THICKNESS - BACKPLATE_THICKNESS
     z_piston = z_in_bp - PISTON_LENGTH
     z_housing = z_piston - HOUSING_THICKNESS
@@ -253,7 +256,7 @@ def build(h, ventilated=False, disc_layers=None):
     z_lug = z_in_bp - BRACKET_LUG
     zc_lat = breaks(sorted({z_housing, z_piston, z_lug, z_in_bp,
                             -PAD_THICKNESS, 0.0, thickness, z_out_pad,
-                            z_out_bp, z_finger}), h)
+                            z_out_bp, z_finger}), h, min_cells)
     R, T, Z = (lambda a, b: between(rc_lat, a, b),
                lambda a, b: between(t_lat, a, b),
                lambda a, b: between(zc_lat, a, b))
@@ -427,6 +430,10 @@ def main():
                         help="cells through the solid disc's thickness, "
                         "1 to 32 (default: its 25 mm over the element size, "
                         "rounded)")
+    parser.add_argument("--min-cells", type=int, default=1,
+                        help="the fewest cells between two break points of "
+                        "a lattice, 1 to 8 (default 1: a 5 mm backplate "
+                        "gets one cell at any element size above 3.3 mm)")
     parser.add_argument("--out", help="folder (default prm/brake_<size>, "
                         "prm/brake_<size>_ventilated with --ventilated)")
     args = parser.parse_args()
@@ -438,12 +445,14 @@ def main():
     if args.disc_layers is not None and args.ventilated:
         sys.exit("make_brake.py: --disc-layers is for the solid disc (the "
                  "ventilated disc's cheeks and vanes set its layers)")
+    if not 1 <= args.min_cells <= 8:
+        sys.exit("make_brake.py: --min-cells must be 1 to 8")
     here = os.path.dirname(os.path.abspath(__file__))
     out = args.out or os.path.normpath(
         os.path.join(here, "..", "prm", f"brake_{args.size}" +
                      ("_ventilated" if args.ventilated else "")))
     os.makedirs(out, exist_ok=True)
-    m, g = build(h, args.ventilated, args.disc_layers)
+    m, g = build(h, args.ventilated, args.disc_layers, args.min_cells)
     write_msh(m, os.path.join(out, "brake.msh"))
     write_scene(g, os.path.join(out, "brake_scene.prm"), "brake.msh")
     print(f"make_brake.py: {out}/brake.msh and brake_scene.prm: "

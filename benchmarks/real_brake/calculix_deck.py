@@ -56,8 +56,9 @@ def name(s):
     return s.upper().replace(" ", "_")
 
 
-def deck(h, f_max, modes, friction=None):
-    """The text of the deck at element size h [mm]; (text, DoFs). With
+def deck(h, f_max, modes, friction=None, min_cells=1):
+    """The text of the deck at element size h [mm] (MIN_CELLS: the
+    generator's fewest cells between two break points); (text, DoFs). With
     FRICTION (a dict: k_n [N/m^3], mu, stick_slope [N/mm^3], theta [rad],
     force [N], f_min [Hz], and increment, the static step's fixed increment,
     if not CalculiX's automatic ones from 0.1 of the step) the pads are in frictional contact with the disc
@@ -68,7 +69,7 @@ def deck(h, f_max, modes, friction=None):
     pair) and turns the disc by THETA at its hub so that the pads slip, then
     a perturbed, unsymmetric *FREQUENCY step of MODES eigenvalues from
     F_MIN up."""
-    mesh, _ = make_brake.build(h)
+    mesh, _ = make_brake.build(h, min_cells=min_cells)
     coords = [list(c) for c in mesh.coords]
     mid = {}
     disc_nodes = {n for c in mesh.cells["disc"] for n in c}

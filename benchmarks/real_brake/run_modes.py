@@ -102,25 +102,29 @@ def default_layers(h):
     return max(1, int(round(25.0 / h)))
 
 
-def layers_suffix(layers):
-    return f"_L{layers}" if layers else ""
+def layers_suffix(layers, min_cells=1):
+    return (f"_L{layers}" if layers else "") + \
+        (f"_c{min_cells}" if min_cells > 1 else "")
 
 
-def mesh_dir(work, h, layers=None):
+def mesh_dir(work, h, layers=None, min_cells=1):
     """The generator's mesh at element size H [mm] (with LAYERS cells
-    through the disc if given) in WORKDIR, made once."""
-    out = os.path.join(work, f"mesh_{h:g}" + layers_suffix(layers))
+    through the disc if given, and at least MIN_CELLS cells between two
+    break points of its lattices) in WORKDIR, made once."""
+    out = os.path.join(work, f"mesh_{h:g}" + layers_suffix(layers, min_cells))
     if not os.path.isfile(os.path.join(out, "brake_scene.prm")):
         subprocess.run([sys.executable,
                         os.path.join(root, "scripts", "make_brake.py"),
-                        "--element-size", str(h), "--out", out] +
+                        "--element-size", str(h), "--out", out,
+                        "--min-cells", str(min_cells)] +
                        (["--disc-layers", str(layers)] if layers else []),
                        check=True, capture_output=True)
     return out
 
 
-def squeal_run(squeal, work, h, degree, layers=None, adapt=None):
-    name = f"squeal_h{h:g}_q{degree}" + layers_suffix(layers) + \
+def squeal_run(squeal, work, h, degree, layers=None, adapt=None,
+               min_cells=1):
+    name = f"squeal_h{h:g}_q{degree}" + layers_suffix(layers, min_cells) + \
         (f"_a{adapt[0]}f{adapt[1]:g}" if adapt else "")
     out = os.path.join(work, name)
     adaptive = f"""
@@ -129,7 +133,7 @@ def squeal_run(squeal, work, h, degree, layers=None, adapt=None):
   set Error indicator = traction jump""" if adapt else ""
 
     def run():
-        mesh = mesh_dir(work, h, layers)
+        mesh = mesh_dir(work, h, layers, min_cells)
         with open(out + ".prm", "w") as f:
             f.write(f"""INCLUDE {mesh}/brake_scene.prm
 subsection Scene
@@ -178,17 +182,19 @@ end
             f", {adapt[0]} adaptive cycle{'s' if adapt[0] > 1 else ''} "
             f"({100 * adapt[1]:g} %, traction jump)" if adapt else "")
         return dict(code="squeal", mesh_mm=h, element=element,
-                    disc_layers=layers or default_layers(h), dofs=dofs,
+                    disc_layers=layers or default_layers(h),
+                    min_cells=min_cells, dofs=dofs,
                     seconds=seconds, memory_MB=mb, freqs=freqs)
     return cached(out + ".json", run)
 
 
-def calculix_run(work, h):
-    name = f"ccx_h{h:g}"
+def calculix_run(work, h, min_cells=1):
+    name = f"ccx_h{h:g}" + layers_suffix(None, min_cells)
     inp = os.path.join(work, name + ".inp")
 
     def run():
-        text, dofs = calculix_deck.deck(h, F_MAX, 300)
+        text, dofs = calculix_deck.deck(h, F_MAX, 300,
+                                        min_cells=min_cells)
         with open(inp, "w") as f:
             f.write(text)
         env = dict(os.environ, OMP_NUM_THREADS="2", OPENBLAS_NUM_THREADS="1")
@@ -204,7 +210,8 @@ def calculix_run(work, h):
             if len(cols) == 5 and cols[0].isdigit():
                 freqs.append(float(cols[3]))
         return dict(code="CalculiX", mesh_mm=h, element="C3D20R",
-                    disc_layers=default_layers(h), dofs=dofs,
+                    disc_layers=default_layers(h), min_cells=min_cells,
+                    dofs=dofs,
                     seconds=seconds, memory_MB=mb,
                     freqs=sorted(v for v in freqs if v <= F_MAX))
     return cached(os.path.join(work, name + ".json"), run)
