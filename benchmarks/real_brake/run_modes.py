@@ -9,9 +9,13 @@ each pad face tied to its disc face (squeal: Ties, dual mortar; CalculiX:
 *TIE), every body and material of brake_scene.prm, the disc held at its hub
 face and the bracket at its mounts, no springs, no damping.
 - CalculiX: calculix_deck.py's C3D20R decks of the generator's meshes at
-  element sizes 10, 7.5 and 6 mm, `ccx -i` with OMP_NUM_THREADS=2,
+  element sizes 10, 7.5 and 6 mm, and 10 mm with at least four cells
+  between two break points (make_brake.py --min-cells 4: the thin parts
+  refined), `ccx -i` with OMP_NUM_THREADS=2,
   OPENBLAS_NUM_THREADS=1, *FREQUENCY (SPOOLES + ARPACK) up to 16 kHz;
-- squeal: the same meshes (brake.msh) at degree 2 (10, 7.5 and 6 mm) and 3
+- squeal: the same meshes (brake.msh) at degree 2 (10, 7.5 and 6 mm; 7.5
+  mm with two and three cells at least between breaks, 6 and 10 mm with
+  three, 10 mm with four) and 3
   (15, 12.5 and 10 mm, the 10 mm mesh with three cells through the disc's
   thickness instead of two, and the 15, 12.5 and 10 mm meshes refined by
   adaptive cycles with the traction-jump indicator), the reduced solver
@@ -45,18 +49,23 @@ import calculix_deck  # noqa: E402
 
 F_MAX = 16000.0
 # (element size [mm], degree, cells through the disc or None for the
-# generator's default, 25 mm over the element size, and None or the
+# generator's default, 25 mm over the element size, None or the
 # adaptive cycles before the solve: (cycles, fraction of the cells refined
-# per cycle by the traction-jump indicator))
+# per cycle by the traction-jump indicator), and optionally the generator's
+# --min-cells, the fewest cells between two break points of its lattices:
+# the thin parts' cells, default 1)
 SQUEAL_RUNS = [(10.0, 2, None, None), (7.5, 2, None, None),
-               (6.0, 2, None, None),
+               (6.0, 2, None, None), (7.5, 2, None, None, 2),
+               (7.5, 2, None, None, 3), (6.0, 2, None, None, 3),
+               (10.0, 2, None, None, 3), (10.0, 2, None, None, 4),
                (15.0, 3, None, None), (12.5, 3, None, None),
                (10.0, 3, None, None), (10.0, 3, 3, None),
                (15.0, 3, None, (2, 0.1)), (12.5, 3, None, (1, 0.1)),
                (12.5, 3, None, (1, 0.05)), (10.0, 3, None, (1, 0.05))]
 # the reference: the 10 mm mesh at degree 3 with one adaptive cycle
 REFERENCE = (10.0, 3, None, (1, 0.05))
-CALCULIX_RUNS = [10.0, 7.5, 6.0]
+# (element size [mm], --min-cells)
+CALCULIX_RUNS = [(10.0, 1), (7.5, 1), (6.0, 1), (10.0, 4)]
 
 
 def timed(command, cwd, env=None):
@@ -226,17 +235,18 @@ def main():
     if subprocess.run(["which", "ccx"], capture_output=True).returncode:
         sys.exit("run_modes.py needs CalculiX: apt-get install calculix-ccx")
     runs = [squeal_run(squeal, work, *run) for run in SQUEAL_RUNS]
-    runs += [calculix_run(work, h) for h in CALCULIX_RUNS]
+    runs += [calculix_run(work, *run) for run in CALCULIX_RUNS]
     finest = runs[SQUEAL_RUNS.index(REFERENCE)]
     band = [f for f in finest["freqs"] if f <= F_MAX]
     print(f"reference: squeal {finest['element']}, {finest['mesh_mm']:g} mm "
           f"mesh, {finest['disc_layers']} cells through the disc, "
           f"{finest['dofs']} DoFs: {len(band)} modes below "
           f"{F_MAX:g} Hz ({band[0]:.1f} ... {band[-1]:.1f} Hz)")
-    print("| code | mesh [mm] | cells through the disc | element | DoFs | modes below 16 kHz | "
+    print("| code | mesh [mm] | cells through the disc | fewest cells "
+          "between breaks | element | DoFs | modes below 16 kHz | "
           "wall time [s] | peak memory [MB] | largest error | median error "
           "| modes within 0.5 % |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     rows = []
     for r in runs:
         f = r["freqs"]
@@ -247,12 +257,14 @@ def main():
         count = sum(1 for v in f if v <= F_MAX)
         within = sum(1 for e in errors if e <= 5e-3)
         print(f"| {r['code']} | {r['mesh_mm']:g} | {r['disc_layers']} | "
-              f"{r['element']} | "
+              f"{r.get('min_cells', 1)} | {r['element']} | "
               f"{r['dofs']} | {count} | {r['seconds']:.1f} | "
               f"{r['memory_MB']:.0f} | {100 * largest:.3f} % | "
               f"{100 * median:.3f} % | {within} of {len(band)} |")
         rows.append(dict(code=r["code"], mesh_mm=r["mesh_mm"],
-                         disc_layers=r["disc_layers"], element=r["element"],
+                         disc_layers=r["disc_layers"],
+                         min_cells=r.get("min_cells", 1),
+                         element=r["element"],
                          dofs=r["dofs"], modes=count,
                          seconds=r["seconds"], memory_MB=r["memory_MB"],
                          largest_error=largest, median_error=median,
