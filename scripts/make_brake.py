@@ -452,7 +452,8 @@ def main():
         os.path.join(here, "..", "prm", f"brake_{args.size}" +
                      ("_ventilated" if args.ventilated else "")))
     os.makedirs(out, exist_ok=True)
-    m, g = build(h, args.ventilated, args.disc_layers, args.min_cells)
+    m, g = build(h, args.ventilated, args.disc_layers,
+                 args.min_cells)
     write_msh(m, os.path.join(out, "brake.msh"))
     write_scene(g, os.path.join(out, "brake_scene.prm"), "brake.msh")
     print(f"make_brake.py: {out}/brake.msh and brake_scene.prm: "
