@@ -18,8 +18,9 @@ face and the bracket at its mounts, no springs, no damping.
   with three and four) and 3 (15, 12.5 and 10 mm, the 10 mm mesh with
   three cells through the disc's thickness instead of two, the 12.5 mm
   mesh with two cells at least between breaks, and the 15, 12.5 and
-  10 mm meshes refined by adaptive cycles with the traction-jump indicator), the reduced solver
-  with the undamped symmetric modes up to 16 kHz as its basis (without
+  10 mm meshes refined by adaptive cycles with the traction-jump
+  indicator), the reduced solver with the undamped symmetric modes up to
+  16 kHz as its basis (without
   friction and damping its eigenvalues are those modes; no
   certification), no mesh_error output (Output/Error indicator = false:
   the runs time the modes), 1 MPI rank.
