@@ -16,8 +16,8 @@ face and the bracket at its mounts, no springs, no damping.
 - squeal: the same meshes (brake.msh) at degree 2 (10, 7.5 and 6 mm; 7.5
   mm and 6 mm with two and three cells at least between breaks, 10 mm
   with three and four) and 3 (15, 12.5 and 10 mm, the 10 mm mesh with
-  three cells through the disc's thickness instead of two, the 12.5 mm
-  mesh with two cells at least between breaks, and the 15, 12.5 and
+  three cells through the disc's thickness instead of two, the 15 and
+  12.5 mm meshes with two cells at least between breaks, and the 15, 12.5 and
   10 mm meshes refined by adaptive cycles with the traction-jump
   indicator), the reduced solver with the undamped symmetric modes up to
   16 kHz as its basis (without
@@ -60,7 +60,7 @@ SQUEAL_RUNS = [(10.0, 2, None, None), (7.5, 2, None, None),
                (7.5, 2, None, None, 3), (6.0, 2, None, None, 2),
                (6.0, 2, None, None, 3),
                (10.0, 2, None, None, 3), (10.0, 2, None, None, 4),
-               (12.5, 3, None, None, 2),
+               (15.0, 3, None, None, 2), (12.5, 3, None, None, 2),
                (15.0, 3, None, None), (12.5, 3, None, None),
                (10.0, 3, None, None), (10.0, 3, 3, None),
                (15.0, 3, None, (2, 0.1)), (12.5, 3, None, (1, 0.1)),
