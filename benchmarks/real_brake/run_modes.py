@@ -113,9 +113,10 @@ def run_squeal(squeal, out, work):
     return r, seconds, mb, values
 
 
-def default_layers(h):
-    """The generator's cells through the disc's 25 mm at element size H."""
-    return max(1, int(round(25.0 / h)))
+def default_layers(h, min_cells=1):
+    """The generator's cells through the disc's 25 mm at element size H
+    with at least MIN_CELLS between two break points."""
+    return max(min_cells, int(round(25.0 / h)))
 
 
 def layers_suffix(layers, min_cells=1):
@@ -198,7 +199,7 @@ end
             f", {adapt[0]} adaptive cycle{'s' if adapt[0] > 1 else ''} "
             f"({100 * adapt[1]:g} %, traction jump)" if adapt else "")
         return dict(code="squeal", mesh_mm=h, element=element,
-                    disc_layers=layers or max(min_cells, default_layers(h)),
+                    disc_layers=layers or default_layers(h, min_cells),
                     min_cells=min_cells, dofs=dofs,
                     seconds=seconds, memory_MB=mb, freqs=freqs)
     return cached(out + ".json", run)
@@ -226,7 +227,7 @@ def calculix_run(work, h, min_cells=1):
             if len(cols) == 5 and cols[0].isdigit():
                 freqs.append(float(cols[3]))
         return dict(code="CalculiX", mesh_mm=h, element="C3D20R",
-                    disc_layers=max(min_cells, default_layers(h)),
+                    disc_layers=default_layers(h, min_cells),
                     min_cells=min_cells,
                     dofs=dofs,
                     seconds=seconds, memory_MB=mb,
