@@ -14,10 +14,4 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # Two tests run at once (and some on 2 MPI ranks): one BLAS thread each, so
 # the 2 cores are not oversubscribed.
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
-# OpenBLAS picks its kernels by CPU, and their rounding differs: on an
-# AVX-512 host (SkylakeX kernels) end_to_end/adaptive_tolerance_degree loses
-# one member of a disc doublet in its degree-raised estimate (an open defect
-# of the estimate's eigensolve, not of the test); the suite's numbers are
-# those of the AVX2 (Haswell) kernels on every host.
-export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}
 ctest -LE long --output-on-failure -j2 "$@"

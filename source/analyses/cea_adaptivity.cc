@@ -70,11 +70,12 @@ namespace squeal
       // that locks in on one discretisation and not on the other counts):
       // the shapes of the coarse modes carried to the rich model's support
       // points (physics::transfer_field), the complex MAC with every rich
-      // mode, and among the rich modes within 80 % of the best MAC the one
-      // nearest in the complex plane (the two members of a doublet share a
-      // subspace, and near a lock-in the two shapes of the pair become
-      // parallel: shape alone cannot tell them apart). A mode whose best
-      // MAC is below 0.3 has no partner: difference 1 (100 %).
+      // mode or, for the modes of one eigenvalue, with their space, and
+      // among the rich modes within 80 % of the best MAC the one nearest in
+      // the complex plane (the two members of a doublet share a subspace,
+      // and near a lock-in the two shapes of the pair become parallel:
+      // shape alone cannot tell them apart). A mode whose best MAC is below
+      // 0.3 has no partner: difference 1 (100 %).
       struct Partner
       {
         int                  index = -1;
@@ -88,7 +89,44 @@ namespace squeal
                   const physics::StructuralModel                       &rich,
                   const std::vector<eigen::EigenPair> &rich_pairs)
       {
-        const auto           rich_shapes = full_shapes(rich, rich_pairs);
+        auto rich_shapes = full_shapes(rich, rich_pairs);
+        // the rich modes of one eigenvalue (|lambda_j - lambda_i| <= 1e-6
+        // |lambda_i|: a doublet) orthonormalised (Gram-Schmidt in the
+        // Hermitian product of the shapes): the eigensolver returns any
+        // independent pair of a doublet's space, and a coarse mode in that
+        // space can be far from both of a nearly parallel pair (MAC below
+        // 0.3 with each: no partner, an estimate of 100 %, depending on
+        // rounding). With an orthonormal pair its MACs with the two sum to
+        // its MAC with the space, which is what a cluster is compared by.
+        std::vector<unsigned int> cluster(rich_pairs.size());
+        for (unsigned int j = 0; j < rich_pairs.size(); ++j)
+          {
+            cluster[j] = j;
+            for (unsigned int i = 0; i < j; ++i)
+              if (std::abs(rich_pairs[i].lambda - rich_pairs[j].lambda) <=
+                  1e-6 * std::abs(rich_pairs[j].lambda))
+                {
+                  cluster[j] = cluster[i];
+                  break;
+                }
+            auto &v = rich_shapes[j];
+            for (unsigned int i = cluster[j]; i < j; ++i)
+              if (cluster[i] == cluster[j])
+                {
+                  const auto          &u  = rich_shapes[i];
+                  std::complex<double> uv = 0.;
+                  for (std::size_t n = 0; n < v.size(); ++n)
+                    uv += std::conj(u[n]) * v[n];
+                  for (std::size_t n = 0; n < v.size(); ++n)
+                    v[n] -= uv * u[n];
+                }
+            double norm2 = 0.;
+            for (const auto &x : v)
+              norm2 += std::norm(x);
+            if (norm2 > 0.)
+              for (auto &x : v)
+                x /= std::sqrt(norm2);
+          }
         std::vector<Partner> result(coarse_pairs.size());
         for (unsigned int k = 0; k < coarse_pairs.size(); ++k)
           {
@@ -96,12 +134,18 @@ namespace squeal
             std::vector<double> mac(rich_pairs.size(), 0.);
             for (unsigned int j = 0; j < rich_pairs.size(); ++j)
               mac[j] = eigen::complex_mac(a, rich_shapes[j]);
+            // each cluster's MAC: the sum over its orthonormal members
+            std::vector<double> cluster_mac(rich_pairs.size(), 0.);
+            for (unsigned int j = 0; j < rich_pairs.size(); ++j)
+              cluster_mac[cluster[j]] += mac[j];
             const double best =
-              mac.empty() ? 0. : *std::max_element(mac.begin(), mac.end());
+              cluster_mac.empty() ?
+                0. :
+                *std::max_element(cluster_mac.begin(), cluster_mac.end());
             if (best < 0.3)
               continue;
             for (unsigned int j = 0; j < rich_pairs.size(); ++j)
-              if (mac[j] >= 0.8 * best)
+              if (cluster_mac[cluster[j]] >= 0.8 * best)
                 {
                   const auto  &lj = rich_pairs[j].lambda;
                   const double d =

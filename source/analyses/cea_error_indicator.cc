@@ -13,6 +13,7 @@
 #include <squeal/analyses/cea.h>
 #include <squeal/contact/scene_contact.h>
 #include <squeal/eigen/mac.h>
+#include <squeal/eigen/tracking.h>
 #include <squeal/io/output_directory.h>
 #include <squeal/physics/error_indicator.h>
 
@@ -92,6 +93,30 @@ namespace squeal
         ghosted.emplace_back(model->locally_owned_dofs,
                              model->locally_relevant_dofs,
                              comm);
+      // With weights, the modes are scaled per cluster of equal eigenvalues
+      // (|lambda_j - lambda_k| <= 1e-6 |lambda_k|: the two members of a
+      // disc's doublet): the sum of their squared fields, each of unit
+      // kinetic norm, does not depend on which basis of the doublet the
+      // eigensolver returned (the trace of the indicator's quadratic form
+      // on the pair's space), whereas each member's own distribution does,
+      // and with it the marking, by rounding. cluster[k]: the first pair of
+      // k's cluster; remaining[c]: its members not yet estimated.
+      std::vector<std::size_t>              cluster(pairs.size());
+      std::map<std::size_t, unsigned int>   remaining;
+      std::map<std::size_t, Vector<double>> cluster_field;
+      std::map<std::size_t, double>         cluster_weight;
+      for (std::size_t k = 0; k < pairs.size(); ++k)
+        {
+          cluster[k] = k;
+          for (std::size_t j = 0; j < k; ++j)
+            if (std::abs(pairs[j].lambda - pairs[k].lambda) <=
+                1e-6 * std::abs(pairs[k].lambda))
+              {
+                cluster[k] = cluster[j];
+                break;
+              }
+          ++remaining[cluster[k]];
+        }
       // the whole mass of the point: every mass part at its coefficient
       physics::PETScMatrix M;
       model->parts().mass(values, M);
@@ -99,6 +124,62 @@ namespace squeal
       // a third of the common pattern's entries) for the 2 products per
       // mode
       physics::store_nonzeros_only(M, model->locally_owned_dofs, comm);
+      // The members of a cluster after its first, M-orthogonalised to the
+      // ones before them (Gram-Schmidt in the Hermitian product v^H M w):
+      // the eigensolver's vectors of a repeated eigenvalue are any
+      // independent pair of its space, not necessarily orthogonal, and the
+      // indicator summed over a non-orthogonal pair depends on which pair
+      // it is. (Each is scaled to unit kinetic norm below.) One copy per
+      // doublet.
+      std::map<std::size_t, eigen::EigenPair> orthogonal;
+      const auto                              vectors_of =
+        [&](const std::size_t k) -> const eigen::EigenPair & {
+        const auto it = orthogonal.find(k);
+        return it == orthogonal.end() ? pairs[k] : it->second;
+      };
+      for (std::size_t k = 0; k < pairs.size(); ++k)
+        if (cluster[k] != k)
+          {
+            eigen::EigenPair     v = pairs[k];
+            physics::PETScVector Mu_re(v.re), Mu_im(v.im);
+            for (std::size_t j = cluster[k]; j < k; ++j)
+              if (cluster[j] == cluster[k])
+                {
+                  const eigen::EigenPair &u = vectors_of(j);
+                  M.vmult(Mu_re, u.re);
+                  M.vmult(Mu_im, u.im);
+                  const double uu = Mu_re * u.re + Mu_im * u.im;
+                  if (!(uu > 0.))
+                    continue;
+                  // alpha = u^H M v / u^H M u (M symmetric)
+                  const double a_re = (Mu_re * v.re + Mu_im * v.im) / uu;
+                  const double a_im = (Mu_re * v.im - Mu_im * v.re) / uu;
+                  v.re.add(-a_re, u.re, a_im, u.im);
+                  v.im.add(-a_re, u.im, -a_im, u.re);
+                }
+            orthogonal.emplace(k, std::move(v));
+          }
+      // the pairs FIRST..END are done, estimated (nonzero norm) or not:
+      // each cluster they complete goes into SUM at the unit sum over all
+      // cells where its error sits, times the sum of its members' squared
+      // estimated errors
+      const auto finish_batch = [&](const std::size_t first,
+                                    const std::size_t end) {
+        for (std::size_t k = first; k < end; ++k)
+          {
+            const std::size_t c = cluster[k];
+            if (--remaining[c] > 0 || cluster_field.count(c) == 0)
+              continue;
+            Vector<double> &field = cluster_field[c];
+            Utilities::MPI::sum(field, comm, field);
+            const double total = field.l1_norm();
+            if (total > 0.)
+              field *= cluster_weight[c] / total;
+            if (Utilities::MPI::this_mpi_process(comm) == 0)
+              sum += field; // summed over the ranks below
+            cluster_field.erase(c);
+          }
+      };
       for (std::size_t first = 0; first < pairs.size(); first += batch)
         {
           const std::size_t end = std::min(pairs.size(), first + batch);
@@ -109,7 +190,7 @@ namespace squeal
           std::vector<const physics::PETScVector *> solutions;
           for (std::size_t k = first; k < end; ++k)
             {
-              const eigen::EigenPair &pair = pairs[k];
+              const eigen::EigenPair &pair = vectors_of(k);
               physics::PETScVector    re = pair.re, im = pair.im, Mx(pair.re);
               M.vmult(Mx, re);
               const double a = re * Mx, c = im * Mx;
@@ -120,7 +201,17 @@ namespace squeal
                 continue;
               taken.push_back(k);
               first_vector.push_back(solutions.size());
-              weight.push_back((pair.lambda.real() > 0. ? 2. : 1.) / norm2);
+              // unstable by the Eigensolver thresholds, not by the sign
+              // of Re lambda: an undamped mode's is rounding noise, which
+              // would double some members of a doublet and not others
+              const auto &es = prm.eigensolver;
+              weight.push_back(
+                (eigen::is_unstable(pair.lambda,
+                                    es.unstable_tolerance,
+                                    es.unstable_relative_tolerance) ?
+                   2. :
+                   1.) /
+                norm2);
               // The indicator is a sum of squares of linear functionals of
               // the field, so eta^2(re) + eta^2(im) does not change when
               // the mode is multiplied by a phase e^{-i theta}. The phase
@@ -149,7 +240,10 @@ namespace squeal
             }
           first_vector.push_back(solutions.size());
           if (solutions.empty())
-            continue;
+            {
+              finish_batch(first, end);
+              continue;
+            }
           std::vector<Vector<float>> eta(solutions.size(),
                                          Vector<float>(n_cells));
           if (prm.mesh.error_indicator == "traction jump")
@@ -181,19 +275,19 @@ namespace squeal
                    ++v)
                 for (unsigned int c = 0; c < n_cells; ++c)
                   mode[c] += weight[j] * double(eta[v][c]) * double(eta[v][c]);
-              if (!weights.empty())
+              if (weights.empty())
                 {
-                  // where this mode's error sits (unit sum over all cells),
-                  // times the square of its estimated error
-                  Utilities::MPI::sum(mode, comm, mode);
-                  const double total = mode.l1_norm();
-                  if (total > 0.)
-                    mode *= std::pow(weights[taken[j]], 2) / total;
-                  if (Utilities::MPI::this_mpi_process(comm) != 0)
-                    mode = 0.; // summed over the ranks below
+                  sum += mode;
+                  continue;
                 }
-              sum += mode;
+              const std::size_t c  = cluster[taken[j]];
+              auto              it = cluster_field.find(c);
+              if (it == cluster_field.end())
+                it = cluster_field.emplace(c, Vector<double>(n_cells)).first;
+              it->second += mode;
+              cluster_weight[c] += std::pow(weights[taken[j]], 2);
             }
+          finish_batch(first, end);
         }
       // each rank estimated its own cells
       Utilities::MPI::sum(sum, comm, sum);

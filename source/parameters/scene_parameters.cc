@@ -334,7 +334,9 @@ namespace squeal
                         "fraction of the cells refined (those with the "
                         "largest error indicator); with Marking = error, the "
                         "fraction of the squared indicator the refined cells "
-                        "carry.");
+                        "carry. Either way the cells whose indicator is "
+                        "within 1e-3 of the last one marked are refined too "
+                        "(a symmetric mesh's tied cells together).");
       prm.declare_entry(
         "Estimate solver",
         estimate_solver,

@@ -298,6 +298,16 @@ namespace squeal
              bool                         by_error,
              dealii::ConditionalOStream  &pcout);
 
+      /**
+       * Marks for refinement every active cell whose @p indicator (one
+       * value per active cell) is within a relative 1e-3 of the smallest
+       * indicator among the cells already marked, so that cells tied by
+       * the mesh's symmetry are refined together whatever the rounding.
+       * Does nothing when no cell is marked.
+       */
+      void
+      close_ties(const dealii::Vector<float> &indicator);
+
       /// The refine flags of every refine() so far (deal.II's
       /// save_refine_flags: 3 bits per active cell of the mesh before that
       /// step), for setup_and_assemble() of another model on the same mesh.
