@@ -98,17 +98,10 @@ namespace squeal
         // 0.3 with each: no partner, an estimate of 100 %, depending on
         // rounding). With an orthonormal pair its MACs with the two sum to
         // its MAC with the space, which is what a cluster is compared by.
-        std::vector<unsigned int> cluster(rich_pairs.size());
+        const std::vector<std::size_t> cluster =
+          eigen::repeated_eigenvalues(rich_pairs);
         for (unsigned int j = 0; j < rich_pairs.size(); ++j)
           {
-            cluster[j] = j;
-            for (unsigned int i = 0; i < j; ++i)
-              if (std::abs(rich_pairs[i].lambda - rich_pairs[j].lambda) <=
-                  1e-6 * std::abs(rich_pairs[j].lambda))
-                {
-                  cluster[j] = cluster[i];
-                  break;
-                }
             auto &v = rich_shapes[j];
             for (unsigned int i = cluster[j]; i < j; ++i)
               if (cluster[i] == cluster[j])

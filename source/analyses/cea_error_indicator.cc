@@ -94,29 +94,20 @@ namespace squeal
                              model->locally_relevant_dofs,
                              comm);
       // With weights, the modes are scaled per cluster of equal eigenvalues
-      // (|lambda_j - lambda_k| <= 1e-6 |lambda_k|: the two members of a
-      // disc's doublet): the sum of their squared fields, each of unit
+      // (eigen::repeated_eigenvalues(): the two members of a disc's
+      // doublet): the sum of their squared fields, each of unit
       // kinetic norm, does not depend on which basis of the doublet the
       // eigensolver returned (the trace of the indicator's quadratic form
       // on the pair's space), whereas each member's own distribution does,
       // and with it the marking, by rounding. cluster[k]: the first pair of
       // k's cluster; remaining[c]: its members not yet estimated.
-      std::vector<std::size_t>              cluster(pairs.size());
+      const std::vector<std::size_t> cluster =
+        eigen::repeated_eigenvalues(pairs);
       std::map<std::size_t, unsigned int>   remaining;
       std::map<std::size_t, Vector<double>> cluster_field;
       std::map<std::size_t, double>         cluster_weight;
-      for (std::size_t k = 0; k < pairs.size(); ++k)
-        {
-          cluster[k] = k;
-          for (std::size_t j = 0; j < k; ++j)
-            if (std::abs(pairs[j].lambda - pairs[k].lambda) <=
-                1e-6 * std::abs(pairs[k].lambda))
-              {
-                cluster[k] = cluster[j];
-                break;
-              }
-          ++remaining[cluster[k]];
-        }
+      for (const std::size_t c : cluster)
+        ++remaining[c];
       // the whole mass of the point: every mass part at its coefficient
       physics::PETScMatrix M;
       model->parts().mass(values, M);

@@ -81,8 +81,32 @@ namespace squeal
 
     namespace
     {
+      // Cells whose indicators are within a relative 1e-3 of the smallest
+      // one marked are marked too. A symmetric mesh (the disc's rings of
+      // equal cells) has groups of cells whose indicators are equal but for
+      // rounding, and a marking threshold inside such a group would pick its
+      // members by the last bits of the indicator (by the BLAS kernels of
+      // the machine). Marking the whole group keeps the mesh symmetric and
+      // the refinement the same on every machine.
+      void
+      mark_ties(Triangulation<3> &triangulation, const Vector<float> &indicator)
+      {
+        constexpr double tie       = 1e-3;
+        float            threshold = std::numeric_limits<float>::max();
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->refine_flag_set())
+            threshold =
+              std::min(threshold, indicator[cell->active_cell_index()]);
+        if (threshold == std::numeric_limits<float>::max())
+          return;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (!cell->refine_flag_set() &&
+              indicator[cell->active_cell_index()] >= (1. - tie) * threshold)
+            cell->set_refine_flag();
+      }
+
       types::global_dof_index largest_size = 0;
-    }
+    } // namespace
 
     types::global_dof_index
     largest_model_size()
@@ -252,29 +276,6 @@ namespace squeal
       setup_dofs_and_assemble(pcout);
     }
 
-    // Cells whose indicators are within a relative 1e-3 of the smallest
-    // one marked are marked too. A symmetric mesh (the disc's rings of
-    // equal cells) has groups of cells whose indicators are equal but for
-    // rounding, and a marking threshold inside such a group would pick its
-    // members by the last bits of the indicator (by the BLAS kernels of
-    // the machine). Marking the whole group keeps the mesh symmetric and
-    // the refinement the same on every machine.
-    void
-    StructuralModel::close_ties(const Vector<float> &indicator)
-    {
-      constexpr double tie       = 1e-3;
-      float            threshold = std::numeric_limits<float>::max();
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->refine_flag_set())
-          threshold = std::min(threshold, indicator[cell->active_cell_index()]);
-      if (threshold == std::numeric_limits<float>::max())
-        return;
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (!cell->refine_flag_set() &&
-            indicator[cell->active_cell_index()] >= (1. - tie) * threshold)
-          cell->set_refine_flag();
-    }
-
     void
     StructuralModel::refine(const Vector<float> &indicator,
                             const double         fraction,
@@ -299,7 +300,7 @@ namespace squeal
                                                         indicator,
                                                         fraction,
                                                         0.);
-      close_ties(indicator);
+      mark_ties(triangulation, indicator);
       std::vector<bool> flags;
       triangulation.save_refine_flags(flags);
       refinement_history.push_back(flags);

@@ -14,6 +14,7 @@
 #include <squeal/physics/structural_model.h>
 
 #include <complex>
+#include <vector>
 
 namespace squeal
 {
@@ -48,6 +49,34 @@ namespace squeal
           bb += std::norm(b[i]);
         }
       return complex_mac(ab, aa, bb);
+    }
+
+    /**
+     * The repeated eigenvalues among @p pairs (anything indexable whose
+     * entries have a std::complex<double> member lambda [1/s]): entry k of
+     * the result is the index of the first pair j <= k with
+     * |lambda_j - lambda_k| <= 1e-6 |lambda_k|, k itself if none. The two
+     * members of a disc's doublet share an entry; the eigensolver returns
+     * any independent pair of their space, so whatever compares or weighs
+     * their shapes one by one must treat them as one space.
+     */
+    template <typename Pairs>
+    std::vector<std::size_t>
+    repeated_eigenvalues(const Pairs &pairs)
+    {
+      std::vector<std::size_t> first(pairs.size());
+      for (std::size_t k = 0; k < first.size(); ++k)
+        {
+          first[k] = k;
+          for (std::size_t j = 0; j < k; ++j)
+            if (std::abs(pairs[j].lambda - pairs[k].lambda) <=
+                1e-6 * std::abs(pairs[k].lambda))
+              {
+                first[k] = first[j];
+                break;
+              }
+        }
+      return first;
     }
 
     /**

@@ -288,7 +288,10 @@ namespace squeal
        * with @p by_error false, @p fraction of the cells (fixed number);
        * with it true, the fewest cells whose squared indicators sum to
        * @p fraction of the total (fixed fraction, Doerfler's bulk
-       * criterion: W. Doerfler, SIAM J. Numer. Anal. 33, 1996, eq. 4.1).
+       * criterion: W. Doerfler, SIAM J. Numer. Anal. 33, 1996, eq. 4.1);
+       * either way also every cell whose indicator is within a relative
+       * 1e-3 of the smallest one marked (cells tied by the mesh's symmetry
+       * are refined together, whatever the rounding).
        * @throws std::runtime_error if @p indicator does not have one entry
        * per active cell.
        */
@@ -297,16 +300,6 @@ namespace squeal
              double                       fraction,
              bool                         by_error,
              dealii::ConditionalOStream  &pcout);
-
-      /**
-       * Marks for refinement every active cell whose @p indicator (one
-       * value per active cell) is within a relative 1e-3 of the smallest
-       * indicator among the cells already marked, so that cells tied by
-       * the mesh's symmetry are refined together whatever the rounding.
-       * Does nothing when no cell is marked.
-       */
-      void
-      close_ties(const dealii::Vector<float> &indicator);
 
       /// The refine flags of every refine() so far (deal.II's
       /// save_refine_flags: 3 bits per active cell of the mesh before that
